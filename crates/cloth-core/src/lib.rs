@@ -1,0 +1,28 @@
+//! cloth-core: the cloth model and its solver.
+//!
+//! Fabric is a particle system on a triangle mesh with material (warp, weft)
+//! coordinates. Stretch, shear and bending energies give forces and Jacobians;
+//! explicit, symplectic and linearised implicit Euler integrate them, the
+//! implicit one through a filtered block-sparse PCG (Baraff & Witkin 1998,
+//! Ascher & Boxerman 2003). No file formats, no collision library, no I/O.
+
+pub mod energy;
+pub mod error;
+pub mod fabric;
+pub mod linalg;
+pub mod mesh;
+pub mod metrics;
+pub mod solver;
+
+pub use error::{DivergenceReason, MeshError, ParamError, SimError};
+pub use fabric::{BendingLaw, BendingRigidity, Fabric, TensileLaw};
+pub use mesh::{ClothMesh, GridBuilder, GridDiagonals};
+pub use metrics::{GridStretch, StrainReport};
+pub use solver::{
+    Constraint, ConstraintKind, Integrator, PcgSettings, Pin, PinMotion, RestCriteria, RestOutcome,
+    Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
+};
+
+/// 3-vectors and 3x3 blocks used throughout the engine.
+pub type Vec3 = nalgebra::Vector3<f64>;
+pub type Mat3 = nalgebra::Matrix3<f64>;

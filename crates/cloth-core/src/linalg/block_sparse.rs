@@ -1,0 +1,127 @@
+//! A symmetric matrix of 3x3 blocks in compressed rows, with the pattern fixed at build.
+//!
+//! Both triangles are stored so each row's product is independent: the product is
+//! parallel over rows with no reduction across threads, hence identical for any
+//! thread count.
+
+use crate::{Mat3, Vec3};
+use rayon::prelude::*;
+
+/// Rows per parallel task in the matrix-vector product.
+const ROWS_PER_TASK: usize = 512;
+
+#[derive(Debug, Clone)]
+pub struct BlockSparse {
+    row_ptr: Vec<usize>,
+    cols: Vec<u32>,
+    blocks: Vec<Mat3>,
+    diag: Vec<u32>,
+    transpose: Vec<u32>,
+}
+
+impl BlockSparse {
+    /// The pattern with every diagonal block and both `(i, j)` and `(j, i)` for each
+    /// coupled pair; values start at zero.
+    pub fn from_pairs(n: usize, pairs: impl IntoIterator<Item = (usize, usize)>) -> Self {
+        let mut rows: Vec<Vec<u32>> = (0..n).map(|i| vec![i as u32]).collect();
+        for (i, j) in pairs {
+            rows[i].push(j as u32);
+            rows[j].push(i as u32);
+        }
+        let mut row_ptr = Vec::with_capacity(n + 1);
+        let mut cols = Vec::new();
+        row_ptr.push(0);
+        for row in &mut rows {
+            row.sort_unstable();
+            row.dedup();
+            cols.extend_from_slice(row);
+            row_ptr.push(cols.len());
+        }
+        let mut m = Self {
+            blocks: vec![Mat3::zeros(); cols.len()],
+            diag: vec![0; n],
+            transpose: vec![0; cols.len()],
+            row_ptr,
+            cols,
+        };
+        for r in 0..n {
+            for s in m.row_ptr[r]..m.row_ptr[r + 1] {
+                let c = m.cols[s] as usize;
+                m.transpose[s] = m.slot(c, r).expect("pattern is symmetric") as u32;
+                if c == r {
+                    m.diag[r] = s as u32;
+                }
+            }
+        }
+        m
+    }
+
+    /// Number of block rows.
+    pub fn n(&self) -> usize {
+        self.diag.len()
+    }
+    /// Number of stored blocks.
+    pub fn nnz_blocks(&self) -> usize {
+        self.blocks.len()
+    }
+    /// Storage index of block (r, c), if it is in the pattern.
+    pub fn slot(&self, r: usize, c: usize) -> Option<usize> {
+        let range = self.row_ptr[r]..self.row_ptr[r + 1];
+        self.cols[range.clone()]
+            .binary_search(&(c as u32))
+            .ok()
+            .map(|k| range.start + k)
+    }
+    pub fn diag_slot(&self, r: usize) -> usize {
+        self.diag[r] as usize
+    }
+    pub fn row(&self, r: usize) -> std::ops::Range<usize> {
+        self.row_ptr[r]..self.row_ptr[r + 1]
+    }
+    pub fn col_of(&self, slot: usize) -> usize {
+        self.cols[slot] as usize
+    }
+    pub fn transpose_slot(&self, slot: usize) -> usize {
+        self.transpose[slot] as usize
+    }
+    pub fn blocks(&self) -> &[Mat3] {
+        &self.blocks
+    }
+    pub fn blocks_mut(&mut self) -> &mut [Mat3] {
+        &mut self.blocks
+    }
+
+    /// `y = A x`, in parallel over rows when `parallel`.
+    pub fn mul(&self, x: &[Vec3], y: &mut [Vec3], parallel: bool) {
+        debug_assert_eq!(x.len(), self.n());
+        debug_assert_eq!(y.len(), self.n());
+        let run = |(task, out): (usize, &mut [Vec3])| {
+            let first = task * ROWS_PER_TASK;
+            for (k, yr) in out.iter_mut().enumerate() {
+                let mut s = Vec3::zeros();
+                for slot in self.row(first + k) {
+                    s += self.blocks[slot] * x[self.cols[slot] as usize];
+                }
+                *yr = s;
+            }
+        };
+        if parallel {
+            y.par_chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
+        } else {
+            y.chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
+        }
+    }
+
+    /// Dense copy (tests and diagnostics).
+    pub fn to_dense(&self) -> nalgebra::DMatrix<f64> {
+        let n = self.n();
+        let mut d = nalgebra::DMatrix::zeros(3 * n, 3 * n);
+        for r in 0..n {
+            for s in self.row(r) {
+                let c = self.col_of(s);
+                d.view_mut((3 * r, 3 * c), (3, 3)).copy_from(&self.blocks[s]);
+            }
+        }
+        d
+    }
+}

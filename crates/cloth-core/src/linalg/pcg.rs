@@ -1,0 +1,189 @@
+//! Block-Jacobi preconditioned conjugate gradients through faer's matrix-free solver,
+//! with our block-sparse operator. All scratch is allocated once in [`Pcg::new`].
+
+use super::BlockSparse;
+use crate::{Mat3, Vec3};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::matrix_free::conjugate_gradient::{
+    conjugate_gradient, conjugate_gradient_scratch, CgError, CgParams,
+};
+use faer::matrix_free::{LinOp, Precond};
+use faer::{Mat, MatMut, MatRef, Par};
+use serde::{Deserialize, Serialize};
+
+/// Stopping rule of the linear solve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PcgSettings {
+    /// Stop when `|r| <= rel_tolerance * |b|`.
+    pub rel_tolerance: f64,
+    pub max_iterations: usize,
+}
+
+impl Default for PcgSettings {
+    fn default() -> Self {
+        Self { rel_tolerance: 1e-4, max_iterations: 1000 }
+    }
+}
+
+/// What one solve did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PcgOutcome {
+    pub iterations: usize,
+    pub rel_residual: f64,
+    /// False when the iteration limit came first (the last iterate is kept).
+    pub converged: bool,
+}
+
+#[derive(Debug)]
+struct Operator<'a> {
+    a: &'a BlockSparse,
+    parallel: bool,
+}
+
+#[derive(Debug)]
+struct BlockJacobi<'a> {
+    inv: &'a [Mat3],
+}
+
+/// A faer column of length 3n seen as n 3-vectors (no copy).
+fn blocks(m: MatRef<'_, f64>) -> &[Vec3] {
+    bytemuck::cast_slice(m.col(0).try_as_col_major().expect("contiguous column").as_slice())
+}
+fn blocks_mut(m: MatMut<'_, f64>) -> &mut [Vec3] {
+    bytemuck::cast_slice_mut(m.col_mut(0).try_as_col_major_mut().expect("contiguous column").as_slice_mut())
+}
+
+impl LinOp<f64> for Operator<'_> {
+    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
+        StackReq::EMPTY
+    }
+    fn nrows(&self) -> usize {
+        3 * self.a.n()
+    }
+    fn ncols(&self) -> usize {
+        3 * self.a.n()
+    }
+    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
+        self.a.mul(blocks(rhs), blocks_mut(out), self.parallel);
+    }
+    fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
+        self.apply(out, rhs, par, stack);
+    }
+}
+
+impl LinOp<f64> for BlockJacobi<'_> {
+    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
+        StackReq::EMPTY
+    }
+    fn nrows(&self) -> usize {
+        3 * self.inv.len()
+    }
+    fn ncols(&self) -> usize {
+        3 * self.inv.len()
+    }
+    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
+        let (x, y) = (blocks(rhs), blocks_mut(out));
+        for ((yk, xk), m) in y.iter_mut().zip(x).zip(self.inv) {
+            *yk = m * xk;
+        }
+    }
+    fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
+        self.apply(out, rhs, par, stack);
+    }
+}
+
+impl Precond<f64> for BlockJacobi<'_> {}
+
+/// Reusable PCG workspace for systems of `n` blocks.
+pub struct Pcg {
+    inv_diag: Vec<Mat3>,
+    rhs: Mat<f64>,
+    sol: Mat<f64>,
+    buffer: MemBuffer,
+}
+
+impl std::fmt::Debug for Pcg {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Pcg").field("blocks", &self.inv_diag.len()).finish()
+    }
+}
+
+impl Pcg {
+    pub fn new(n: usize) -> Self {
+        let inv_diag = vec![Mat3::identity(); n];
+        let a = BlockSparse::from_pairs(n.max(1), []);
+        let req = conjugate_gradient_scratch(
+            BlockJacobi { inv: &inv_diag },
+            Operator { a: &a, parallel: false },
+            1,
+            Par::Seq,
+        );
+        Self {
+            inv_diag,
+            rhs: Mat::zeros(3 * n, 1),
+            sol: Mat::zeros(3 * n, 1),
+            buffer: MemBuffer::new(req),
+        }
+    }
+
+    /// Solves `A x = b` for SPD `A`, starting from the `x` given. The operator runs in
+    /// parallel when `parallel`; faer's own vector work stays sequential so the result does
+    /// not depend on the number of threads.
+    pub fn solve(
+        &mut self,
+        a: &BlockSparse,
+        b: &[Vec3],
+        x: &mut [Vec3],
+        settings: &PcgSettings,
+        parallel: bool,
+    ) -> Result<PcgOutcome, String> {
+        assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
+        for (r, inv) in self.inv_diag.iter_mut().enumerate() {
+            let d = a.blocks()[a.diag_slot(r)];
+            *inv = d.cholesky().map(|c| c.inverse()).ok_or_else(|| {
+                format!("diagonal block of particle {r} is not positive definite")
+            })?;
+        }
+        blocks_mut(self.rhs.as_mut()).copy_from_slice(b);
+        blocks_mut(self.sol.as_mut()).copy_from_slice(x);
+        // The default MaybeNonZero initial guess: faer 0.24's `Zero` path leaves the
+        // residual uninitialised.
+        let params = CgParams {
+            abs_tolerance: 0.0,
+            rel_tolerance: settings.rel_tolerance,
+            max_iters: settings.max_iterations,
+            ..Default::default()
+        };
+        let result = conjugate_gradient(
+            self.sol.as_mut(),
+            BlockJacobi { inv: &self.inv_diag },
+            Operator { a, parallel },
+            self.rhs.as_ref(),
+            params,
+            |_| {},
+            Par::Seq,
+            MemStack::new(&mut self.buffer),
+        );
+        let outcome = match result {
+            Ok(info) => PcgOutcome {
+                iterations: info.iter_count,
+                rel_residual: info.rel_residual,
+                converged: true,
+            },
+            Err(CgError::NoConvergence { rel_residual, .. }) => PcgOutcome {
+                iterations: settings.max_iterations,
+                rel_residual,
+                converged: false,
+            },
+            Err(CgError::NonPositiveDefiniteOperator) => {
+                return Err("the system matrix is not positive definite".into())
+            }
+            Err(CgError::NonPositiveDefinitePreconditioner) => {
+                return Err("the preconditioner is not positive definite".into())
+            }
+        };
+        x.copy_from_slice(blocks(self.sol.as_ref()));
+        Ok(outcome)
+    }
+}

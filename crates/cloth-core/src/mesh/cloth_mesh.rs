@@ -1,0 +1,154 @@
+//! The validated cloth mesh.
+
+use super::topology::{edges_and_hinges, Hinge};
+use crate::error::MeshError;
+use crate::Vec3;
+use nalgebra::Vector2;
+
+/// Shape of a regular warp/weft grid: vertex `j * nx + i` sits at thread crossing (i, j),
+/// `i` counting along the warp (u), `j` along the weft (v).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GridShape {
+    pub nx: usize,
+    pub ny: usize,
+}
+
+impl GridShape {
+    pub fn index(&self, i: usize, j: usize) -> usize {
+        j * self.nx + i
+    }
+}
+
+/// A triangle mesh whose vertices carry 3D positions and 2D material coordinates
+/// `(u, v)` in metres (u along the warp, v along the weft). The material
+/// coordinates define the rest (flat) state.
+#[derive(Debug, Clone)]
+pub struct ClothMesh {
+    positions: Vec<Vec3>,
+    uv: Vec<Vector2<f64>>,
+    triangles: Vec<[usize; 3]>,
+    edges: Vec<[usize; 2]>,
+    hinges: Vec<Hinge>,
+    grid: Option<GridShape>,
+}
+
+impl ClothMesh {
+    /// Builds and validates a mesh. Errors name the offending triangle, edge or vertex.
+    pub fn new(
+        positions: Vec<Vec3>,
+        uv: Vec<Vector2<f64>>,
+        triangles: Vec<[usize; 3]>,
+    ) -> Result<Self, MeshError> {
+        if triangles.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if positions.len() != uv.len() {
+            return Err(MeshError::LengthMismatch {
+                positions: positions.len(),
+                uvs: uv.len(),
+            });
+        }
+        for (vertex, p) in positions.iter().enumerate() {
+            if !p.iter().all(|c| c.is_finite()) {
+                return Err(MeshError::NonFinite { vertex, field: "position" });
+            }
+            if !uv[vertex].iter().all(|c| c.is_finite()) {
+                return Err(MeshError::NonFinite { vertex, field: "uv" });
+            }
+        }
+        let n = positions.len();
+        for (t, tri) in triangles.iter().enumerate() {
+            for (k, &index) in tri.iter().enumerate() {
+                if index >= n {
+                    return Err(MeshError::IndexOutOfRange {
+                        triangle: t,
+                        index,
+                        vertex_count: n,
+                    });
+                }
+                if tri[(k + 1) % 3] == index {
+                    return Err(MeshError::RepeatedVertex { triangle: t, index });
+                }
+            }
+            let [a, b, c] = *tri;
+            let (e1, e2) = (uv[b] - uv[a], uv[c] - uv[a]);
+            let area_uv = 0.5 * (e1.x * e2.y - e1.y * e2.x).abs();
+            if is_degenerate(area_uv, [uv[a], uv[b], uv[c]].map(|p| p.push(0.0))) {
+                return Err(MeshError::DegenerateTriangle { triangle: t, space: "uv", area: area_uv });
+            }
+            let (p, q, r) = (positions[a], positions[b], positions[c]);
+            let area_3d = 0.5 * (q - p).cross(&(r - p)).norm();
+            if is_degenerate(area_3d, [p, q, r]) {
+                return Err(MeshError::DegenerateTriangle { triangle: t, space: "3D", area: area_3d });
+            }
+        }
+        let mut used = vec![false; n];
+        triangles.iter().flatten().for_each(|&i| used[i] = true);
+        if let Some(vertex) = used.iter().position(|u| !u) {
+            return Err(MeshError::UnusedVertex { vertex });
+        }
+        let (edges, hinges) = edges_and_hinges(&triangles)?;
+        Ok(Self { positions, uv, triangles, edges, hinges, grid: None })
+    }
+
+    pub(crate) fn with_grid(mut self, grid: GridShape) -> Self {
+        self.grid = Some(grid);
+        self
+    }
+
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+    pub fn uv(&self) -> &[Vector2<f64>] {
+        &self.uv
+    }
+    pub fn triangles(&self) -> &[[usize; 3]] {
+        &self.triangles
+    }
+    /// Unique edges, each as a sorted vertex pair.
+    pub fn edges(&self) -> &[[usize; 2]] {
+        &self.edges
+    }
+    pub fn hinges(&self) -> &[Hinge] {
+        &self.hinges
+    }
+    /// The grid layout when the mesh came from [`GridBuilder`](super::GridBuilder).
+    pub fn grid(&self) -> Option<GridShape> {
+        self.grid
+    }
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Rest (material) area of triangle `t`.
+    pub fn rest_area(&self, t: usize) -> f64 {
+        let [a, b, c] = self.triangles[t];
+        let (e1, e2) = (self.uv[b] - self.uv[a], self.uv[c] - self.uv[a]);
+        0.5 * (e1.x * e2.y - e1.y * e2.x).abs()
+    }
+
+    /// Total rest area.
+    pub fn total_rest_area(&self) -> f64 {
+        (0..self.triangles.len()).map(|t| self.rest_area(t)).sum()
+    }
+
+    /// Lumped masses: each triangle gives a third of its rest mass to each corner.
+    pub fn lumped_masses(&self, area_density: f64) -> Vec<f64> {
+        let mut m = vec![0.0; self.vertex_count()];
+        for (t, tri) in self.triangles.iter().enumerate() {
+            let share = area_density * self.rest_area(t) / 3.0;
+            for &v in tri {
+                m[v] += share;
+            }
+        }
+        m
+    }
+}
+
+/// Zero area relative to the triangle's size (scale-free, so millimetre and metre meshes agree).
+fn is_degenerate(area: f64, p: [Vec3; 3]) -> bool {
+    let longest = (0..3)
+        .map(|k| (p[(k + 1) % 3] - p[k]).norm_squared())
+        .fold(0.0, f64::max);
+    !(area > 1e-10 * longest)
+}

@@ -1,0 +1,9 @@
+//! Cloth meshes: triangles with material (warp, weft) coordinates, and their hinges.
+
+mod cloth_mesh;
+mod grid;
+mod topology;
+
+pub use cloth_mesh::{ClothMesh, GridShape};
+pub use grid::{GridBuilder, GridDiagonals};
+pub use topology::Hinge;

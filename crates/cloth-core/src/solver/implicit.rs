@@ -1,0 +1,61 @@
+//! Linearised backward Euler (Baraff & Witkin 1998):
+//! `(M - h dF/dv - h^2 dF/dx) dv = h (F0 + h dF/dx v0)`, `dx = h (v0 + dv)`,
+//! with the constraint filter in projected form.
+
+use super::assembly::StiffnessTarget;
+use super::{Simulation, StepStats};
+use crate::{Mat3, Vec3};
+use std::time::Instant;
+
+impl Simulation {
+    /// Writes the next state into the workspace.
+    pub(super) fn implicit_step(&mut self, h: f64) -> Result<StepStats, String> {
+        let start = Instant::now();
+        let s = &self.settings;
+        let ws = &mut self.ws;
+        let beta = self.model.fabric().damping;
+        // A = M + h C_drag + (h^2 + h beta) K, with K the PSD stiffness.
+        self.matrix.blocks_mut().fill(Mat3::zeros());
+        for (i, &m) in self.model.masses().iter().enumerate() {
+            let d = self.matrix.diag_slot(i);
+            self.matrix.blocks_mut()[d] = Mat3::from_diagonal_element(m + h * self.model.drag_coefficient(i));
+        }
+        let target = StiffnessTarget { matrix: &mut self.matrix, scale: h * h + h * beta };
+        let potential = self.model.evaluate(
+            &self.x, &self.v, &s.gravity, &s.wind, &mut ws.force, &mut ws.hv, Some(target), s.parallel,
+        );
+        let assembly_seconds = start.elapsed().as_secs_f64();
+
+        let start = Instant::now();
+        // b = h F0 - h^2 K v0 (F0 already holds the damping force -beta K v0).
+        for ((b, f), kv) in ws.rhs.iter_mut().zip(&ws.force).zip(&ws.hv) {
+            *b = h * f - (h * h) * kv;
+        }
+        ws.filter.velocity_change(&self.v, &mut ws.z);
+        if !ws.filter.is_empty() {
+            self.matrix.mul(&ws.z, &mut ws.az, s.parallel);
+            for (b, az) in ws.rhs.iter_mut().zip(&ws.az) {
+                *b -= az;
+            }
+            ws.filter.project(&mut ws.rhs);
+            ws.filter.filter_matrix(&mut self.matrix);
+        }
+        ws.filter.project(&mut ws.y);
+        let outcome = ws.pcg.solve(&self.matrix, &ws.rhs, &mut ws.y, &s.pcg, s.parallel)?;
+        ws.filter.project(&mut ws.y);
+        for i in 0..self.x.len() {
+            let v: Vec3 = self.v[i] + ws.y[i] + ws.z[i];
+            ws.v_new[i] = v;
+            ws.x_new[i] = self.x[i] + h * v;
+        }
+        Ok(StepStats {
+            cg_iterations: outcome.iterations,
+            cg_residual: outcome.rel_residual,
+            cg_converged: outcome.converged,
+            assembly_seconds,
+            solve_seconds: start.elapsed().as_secs_f64(),
+            potential_energy: potential,
+            ..Default::default()
+        })
+    }
+}

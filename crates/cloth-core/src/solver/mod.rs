@@ -1,0 +1,17 @@
+//! The simulation: state, integrators, pins and the stopping mechanism.
+
+mod assembly;
+mod explicit;
+mod implicit;
+mod pins;
+mod rest;
+mod settings;
+mod simulation;
+mod stats;
+
+pub use crate::linalg::{Constraint, ConstraintKind, PcgSettings};
+pub use pins::{Pin, PinMotion};
+pub use rest::{RestCriteria, RestOutcome, StopReason};
+pub use settings::{Integrator, SolverSettings};
+pub use simulation::{Simulation, SimulationBuilder};
+pub use stats::StepStats;

@@ -1,0 +1,38 @@
+//! The source's stopping mechanism: run until the cloth is at rest or a step limit.
+
+use super::StepStats;
+use serde::{Deserialize, Serialize};
+
+/// At rest when every particle moves less than `tolerance` metres per step for
+/// `consecutive_steps` steps in a row; otherwise stop after `max_steps` steps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RestCriteria {
+    pub tolerance: f64,
+    pub consecutive_steps: u32,
+    pub max_steps: u64,
+}
+
+impl Default for RestCriteria {
+    fn default() -> Self {
+        Self { tolerance: 1e-5, consecutive_steps: 10, max_steps: 10_000 }
+    }
+}
+
+/// Why a run to rest ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    AtRest,
+    StepLimit,
+}
+
+/// The end of a run to rest.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RestOutcome {
+    pub reason: StopReason,
+    /// Steps taken by this run.
+    pub steps: u64,
+    /// Statistics of the last step.
+    pub last: StepStats,
+}

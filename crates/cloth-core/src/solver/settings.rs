@@ -1,0 +1,80 @@
+//! Integrator choice and solver settings.
+
+use crate::error::ParamError;
+use crate::linalg::PcgSettings;
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// Time integration scheme.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    /// The source's explicit (forward) Euler: `x += h v0`, `v += h M^-1 F(x0, v0)`.
+    ExplicitEuler,
+    /// Symplectic Euler: `v += h M^-1 F(x0, v0)`, then `x += h v`.
+    SymplecticEuler,
+    /// Backward Euler linearised to one Newton step, solved by filtered PCG.
+    ImplicitEuler,
+}
+
+/// Everything about how the simulation steps.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSettings {
+    pub integrator: Integrator,
+    /// Time step h, s.
+    pub time_step: f64,
+    /// Gravitational acceleration, m/s^2 (z is up by default).
+    pub gravity: Vec3,
+    /// Air velocity the drag acts against, m/s.
+    pub wind: Vec3,
+    pub pcg: PcgSettings,
+    /// Divergence guard: a particle faster than this (m/s) stops the run.
+    pub max_speed: f64,
+    /// Divergence guard: total kinetic energy above this (J) stops the run.
+    pub max_kinetic_energy: f64,
+    /// Use rayon for assembly and the matrix-vector product.
+    pub parallel: bool,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            integrator: Integrator::ImplicitEuler,
+            time_step: 1.0 / 60.0,
+            gravity: Vec3::new(0.0, 0.0, -9.81),
+            wind: Vec3::zeros(),
+            pcg: PcgSettings::default(),
+            max_speed: 100.0,
+            max_kinetic_energy: f64::INFINITY,
+            parallel: true,
+        }
+    }
+}
+
+impl SolverSettings {
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let bad = |name, value, expected| Err(ParamError::OutOfRange { name, value, expected });
+        if !(self.time_step > 0.0 && self.time_step.is_finite()) {
+            return bad("time_step", self.time_step, "a positive finite time step in seconds");
+        }
+        if !(self.pcg.rel_tolerance > 0.0 && self.pcg.rel_tolerance < 1.0) {
+            return bad("pcg.rel_tolerance", self.pcg.rel_tolerance, "a relative tolerance in (0, 1)");
+        }
+        if self.pcg.max_iterations == 0 {
+            return bad("pcg.max_iterations", 0.0, "at least one iteration");
+        }
+        if !(self.max_speed > 0.0) {
+            return bad("max_speed", self.max_speed, "a positive speed limit in m/s");
+        }
+        if !(self.max_kinetic_energy > 0.0) {
+            return bad("max_kinetic_energy", self.max_kinetic_energy, "a positive energy limit in J");
+        }
+        for (name, v) in [("gravity", &self.gravity), ("wind", &self.wind)] {
+            if let Some(c) = v.iter().find(|c| !c.is_finite()) {
+                return bad(name, *c, "finite components");
+            }
+        }
+        Ok(())
+    }
+}

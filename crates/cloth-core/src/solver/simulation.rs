@@ -1,0 +1,280 @@
+//! The Simulation: owns the state and all scratch, and steps.
+
+use super::assembly::ForceModel;
+use super::{Integrator, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason};
+use crate::error::{DivergenceReason, ParamError, SimError};
+use crate::fabric::Fabric;
+use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
+use crate::mesh::ClothMesh;
+use crate::Vec3;
+
+/// Sets up a [`Simulation`].
+#[derive(Debug, Clone)]
+pub struct SimulationBuilder {
+    mesh: ClothMesh,
+    fabric: Fabric,
+    settings: SolverSettings,
+    pins: Vec<Pin>,
+    velocities: Option<Vec<Vec3>>,
+}
+
+impl SimulationBuilder {
+    pub fn new(mesh: ClothMesh, fabric: Fabric) -> Self {
+        Self { mesh, fabric, settings: SolverSettings::default(), pins: Vec::new(), velocities: None }
+    }
+    pub fn settings(mut self, settings: SolverSettings) -> Self {
+        self.settings = settings;
+        self
+    }
+    pub fn integrator(mut self, integrator: Integrator) -> Self {
+        self.settings.integrator = integrator;
+        self
+    }
+    pub fn time_step(mut self, h: f64) -> Self {
+        self.settings.time_step = h;
+        self
+    }
+    pub fn pin(mut self, pin: Pin) -> Self {
+        self.pins.push(pin);
+        self
+    }
+    pub fn pins(mut self, pins: impl IntoIterator<Item = Pin>) -> Self {
+        self.pins.extend(pins);
+        self
+    }
+    /// Initial velocities (zero by default).
+    pub fn velocities(mut self, v: Vec<Vec3>) -> Self {
+        self.velocities = Some(v);
+        self
+    }
+
+    /// Validates the fabric, settings and pins, then builds the model, the matrix
+    /// pattern and every buffer a step needs.
+    pub fn build(self) -> Result<Simulation, ParamError> {
+        self.fabric.validate()?;
+        self.settings.validate()?;
+        let n = self.mesh.vertex_count();
+        let x: Vec<Vec3> = self.mesh.positions().to_vec();
+        let mut pinned = vec![false; n];
+        let mut pins = Vec::with_capacity(self.pins.len());
+        for mut pin in self.pins {
+            if pin.particle >= n {
+                return Err(ParamError::PinOutOfRange { particle: pin.particle, count: n });
+            }
+            if std::mem::replace(&mut pinned[pin.particle], true) {
+                return Err(ParamError::OutOfRange {
+                    name: "pins",
+                    value: pin.particle as f64,
+                    expected: "each particle pinned at most once",
+                });
+            }
+            if let PinMotion::Fixed = pin.motion {
+                pin.motion = PinMotion::At(x[pin.particle]);
+            }
+            pins.push(pin);
+        }
+        let v = match self.velocities {
+            Some(v) if v.len() != n => {
+                return Err(ParamError::OutOfRange {
+                    name: "velocities",
+                    value: v.len() as f64,
+                    expected: "one initial velocity per particle",
+                })
+            }
+            Some(v) => v,
+            None => vec![Vec3::zeros(); n],
+        };
+        if let Some(c) = v.iter().flat_map(|vi| vi.iter()).find(|c| !c.is_finite()) {
+            return Err(ParamError::OutOfRange { name: "velocities", value: *c, expected: "finite components" });
+        }
+        let (model, matrix) = ForceModel::new(&self.mesh, self.fabric);
+        let zeros = vec![Vec3::zeros(); n];
+        Ok(Simulation {
+            mesh: self.mesh,
+            model,
+            matrix,
+            settings: self.settings,
+            pins,
+            x,
+            v,
+            time: 0.0,
+            steps: 0,
+            ws: Workspace {
+                force: zeros.clone(),
+                hv: zeros.clone(),
+                rhs: zeros.clone(),
+                z: zeros.clone(),
+                az: zeros.clone(),
+                y: zeros.clone(),
+                x_new: zeros.clone(),
+                v_new: zeros,
+                filter: Filter::default(),
+                pcg: Pcg::new(n),
+            },
+        })
+    }
+}
+
+/// Scratch reused by every step.
+#[derive(Debug)]
+pub(super) struct Workspace {
+    pub force: Vec<Vec3>,
+    pub hv: Vec<Vec3>,
+    pub rhs: Vec<Vec3>,
+    pub z: Vec<Vec3>,
+    pub az: Vec<Vec3>,
+    /// Last solution of the filtered system, the next solve's initial guess.
+    pub y: Vec<Vec3>,
+    pub x_new: Vec<Vec3>,
+    pub v_new: Vec<Vec3>,
+    pub filter: Filter,
+    pub pcg: Pcg,
+}
+
+/// A cloth simulation: the mesh, its fabric, the state and the integrator.
+#[derive(Debug)]
+pub struct Simulation {
+    pub(super) mesh: ClothMesh,
+    pub(super) model: ForceModel,
+    pub(super) matrix: BlockSparse,
+    pub(super) settings: SolverSettings,
+    pub(super) pins: Vec<Pin>,
+    pub(super) x: Vec<Vec3>,
+    pub(super) v: Vec<Vec3>,
+    pub(super) time: f64,
+    pub(super) steps: u64,
+    pub(super) ws: Workspace,
+}
+
+impl Simulation {
+    pub fn mesh(&self) -> &ClothMesh {
+        &self.mesh
+    }
+    pub fn fabric(&self) -> &Fabric {
+        self.model.fabric()
+    }
+    pub fn settings(&self) -> &SolverSettings {
+        &self.settings
+    }
+    pub fn positions(&self) -> &[Vec3] {
+        &self.x
+    }
+    pub fn velocities(&self) -> &[Vec3] {
+        &self.v
+    }
+    pub fn masses(&self) -> &[f64] {
+        self.model.masses()
+    }
+    pub fn pins(&self) -> &[Pin] {
+        &self.pins
+    }
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+    /// Steps taken so far.
+    pub fn step_count(&self) -> u64 {
+        self.steps
+    }
+    /// The mesh constant scaling hinge stiffness from the bending rigidity.
+    pub fn bending_calibration(&self) -> f64 {
+        self.model.bending_calibration()
+    }
+    /// Changes the integrator or its settings between steps.
+    pub fn set_settings(&mut self, settings: SolverSettings) -> Result<(), ParamError> {
+        settings.validate()?;
+        self.settings = settings;
+        Ok(())
+    }
+    pub fn set_velocities(&mut self, v: &[Vec3]) {
+        self.v.copy_from_slice(v);
+    }
+    pub fn kinetic_energy(&self) -> f64 {
+        kinetic_energy(self.model.masses(), &self.v)
+    }
+
+    /// Advances one time step. On divergence the state stays at the last good step.
+    pub fn step(&mut self) -> Result<StepStats, SimError> {
+        let h = self.settings.time_step;
+        self.ws.filter.clear();
+        for pin in &self.pins {
+            let target = pin.target(self.time + h);
+            self.ws.filter.push(&Constraint {
+                particle: pin.particle,
+                kind: ConstraintKind::Fixed,
+                velocity: (target - self.x[pin.particle]) / h,
+            });
+        }
+        let mut stats = match self.settings.integrator {
+            Integrator::ImplicitEuler => self.implicit_step(h),
+            Integrator::ExplicitEuler => Ok(self.explicit_step(h, false)),
+            Integrator::SymplecticEuler => Ok(self.explicit_step(h, true)),
+        }
+        .map_err(|reason| SimError::Solver { step: self.steps + 1, last_good: self.steps, reason })?;
+
+        let masses = self.model.masses();
+        let mut max_speed: f64 = 0.0;
+        let mut max_disp: f64 = 0.0;
+        for (i, ((xn, vn), x0)) in self.ws.x_new.iter().zip(&self.ws.v_new).zip(&self.x).enumerate() {
+            let speed = vn.norm();
+            let bad = if !(xn.iter().all(|c| c.is_finite()) && speed.is_finite()) {
+                Some(DivergenceReason::NonFinite { particle: i })
+            } else if speed > self.settings.max_speed {
+                Some(DivergenceReason::SpeedLimit { particle: i, speed, limit: self.settings.max_speed })
+            } else {
+                None
+            };
+            if let Some(reason) = bad {
+                return Err(SimError::Diverged { step: self.steps + 1, last_good: self.steps, reason });
+            }
+            max_speed = max_speed.max(speed);
+            max_disp = max_disp.max((xn - x0).norm());
+        }
+        let ke = kinetic_energy(masses, &self.ws.v_new);
+        if ke > self.settings.max_kinetic_energy {
+            return Err(SimError::Diverged {
+                step: self.steps + 1,
+                last_good: self.steps,
+                reason: DivergenceReason::EnergyLimit { energy: ke, limit: self.settings.max_kinetic_energy },
+            });
+        }
+        std::mem::swap(&mut self.x, &mut self.ws.x_new);
+        std::mem::swap(&mut self.v, &mut self.ws.v_new);
+        self.steps += 1;
+        self.time += h;
+        stats.step = self.steps;
+        stats.time = self.time;
+        stats.max_speed = max_speed;
+        stats.max_displacement = max_disp;
+        stats.kinetic_energy = ke;
+        Ok(stats)
+    }
+
+    /// Steps until at rest (every particle moving less than the tolerance per step for the
+    /// given number of consecutive steps) or the step limit, and says which.
+    pub fn run_to_rest(&mut self, criteria: &RestCriteria) -> Result<RestOutcome, SimError> {
+        self.run_to_rest_with(criteria, |_| {})
+    }
+
+    /// As [`run_to_rest`](Self::run_to_rest), calling `observe` after every step.
+    pub fn run_to_rest_with(
+        &mut self,
+        criteria: &RestCriteria,
+        mut observe: impl FnMut(&StepStats),
+    ) -> Result<RestOutcome, SimError> {
+        let mut calm = 0u32;
+        let mut last = StepStats::default();
+        for k in 1..=criteria.max_steps {
+            last = self.step()?;
+            observe(&last);
+            calm = if last.max_displacement < criteria.tolerance { calm + 1 } else { 0 };
+            if calm >= criteria.consecutive_steps {
+                return Ok(RestOutcome { reason: StopReason::AtRest, steps: k, last });
+            }
+        }
+        Ok(RestOutcome { reason: StopReason::StepLimit, steps: criteria.max_steps, last })
+    }
+}
+
+fn kinetic_energy(masses: &[f64], v: &[Vec3]) -> f64 {
+    0.5 * masses.iter().zip(v).map(|(m, vi)| m * vi.norm_squared()).sum::<f64>()
+}

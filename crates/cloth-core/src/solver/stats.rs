@@ -1,0 +1,30 @@
+//! What each step reports.
+
+use serde::Serialize;
+
+/// Statistics of one step.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct StepStats {
+    /// Number of this step (1 for the first).
+    pub step: u64,
+    /// Simulation time at its end, s.
+    pub time: f64,
+    /// PCG iterations (0 for explicit integrators).
+    pub cg_iterations: usize,
+    /// Final relative PCG residual |r|/|b|.
+    pub cg_residual: f64,
+    /// Whether PCG met its tolerance (true for explicit integrators).
+    pub cg_converged: bool,
+    /// Wall time assembling forces and Jacobians, s.
+    pub assembly_seconds: f64,
+    /// Wall time in the linear solve (with filtering), s.
+    pub solve_seconds: f64,
+    /// Largest particle speed at the end of the step, m/s.
+    pub max_speed: f64,
+    /// Largest particle displacement during the step, m.
+    pub max_displacement: f64,
+    /// Kinetic energy at the end of the step, J.
+    pub kinetic_energy: f64,
+    /// Elastic plus gravitational energy at the start of the step, J.
+    pub potential_energy: f64,
+}

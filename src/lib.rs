@@ -1,0 +1,1 @@
+pub use cloth_core::*;
