@@ -9,7 +9,7 @@ fn main() {
         .pin(Pin::fixed(g.index(n - 1, n - 1)))
         .build()
         .unwrap();
-    println!("kappa {}", sim.bending_calibration());
+    println!("kappa {:?}", sim.bending_calibration());
     for k in 0..200 {
         let s = sim.step().unwrap();
         if k % 20 == 0 {

@@ -43,19 +43,57 @@ impl ConstraintKind {
     }
 }
 
-/// The constraints of one step, indexed by particle.
+/// The constraints of one step. A particle constrained twice (a pin that also touches
+/// a body) gets the union of the constrained directions.
 #[derive(Debug, Clone, Default)]
 pub struct Filter {
-    /// (particle, S, prescribed velocity) in the order given.
+    /// (particle, S, prescribed velocity projected on the constrained directions).
     entries: Vec<(usize, Mat3, Vec3)>,
+    /// Entry of each particle, or `u32::MAX`.
+    slot: Vec<u32>,
 }
 
 impl Filter {
+    /// A filter for `n` particles.
+    pub fn new(n: usize) -> Self {
+        Self { entries: Vec::new(), slot: vec![u32::MAX; n] }
+    }
     pub fn clear(&mut self) {
+        for (p, ..) in &self.entries {
+            self.slot[*p] = u32::MAX;
+        }
         self.entries.clear();
     }
-    pub fn push(&mut self, c: &Constraint) {
-        self.entries.push((c.particle, c.kind.free_projection(), c.velocity));
+
+    /// Adds a constraint; a zero or non-finite direction or velocity is an error naming
+    /// the particle.
+    pub fn push(&mut self, c: &Constraint) -> Result<(), String> {
+        let direction = match c.kind {
+            ConstraintKind::Fixed => None,
+            ConstraintKind::Plane { normal } => Some(normal),
+            ConstraintKind::Line { direction } => Some(direction),
+        };
+        let finite = |v: &Vec3| v.iter().all(|x| x.is_finite());
+        if direction.is_some_and(|d| !finite(&d) || d.norm() < 1e-12) || !finite(&c.velocity) {
+            return Err(format!("constraint on particle {} has a zero or non-finite direction or velocity", c.particle));
+        }
+        if c.particle >= self.slot.len() {
+            return Err(format!("constraint on particle {}, but there are {}", c.particle, self.slot.len()));
+        }
+        let s = c.kind.free_projection();
+        let held = (Mat3::identity() - s) * c.velocity;
+        match self.slot[c.particle] {
+            u32::MAX => {
+                self.slot[c.particle] = self.entries.len() as u32;
+                self.entries.push((c.particle, s, held));
+            }
+            k => {
+                let (_, s0, held0) = self.entries[k as usize];
+                let (s1, held1) = merge(s0, held0, s, held);
+                self.entries[k as usize] = (c.particle, s1, held1);
+            }
+        }
+        Ok(())
     }
     pub fn is_empty(&self) -> bool {
         self.entries.is_empty()
@@ -75,8 +113,8 @@ impl Filter {
     /// prescribed values (zero for free particles).
     pub fn velocity_change(&self, v0: &[Vec3], z: &mut [Vec3]) {
         z.iter_mut().for_each(|zi| *zi = Vec3::zeros());
-        for (p, s, target) in &self.entries {
-            z[*p] = (Mat3::identity() - s) * (target - v0[*p]);
+        for (p, s, held) in &self.entries {
+            z[*p] = held - (Mat3::identity() - s) * v0[*p];
         }
     }
 
@@ -101,8 +139,24 @@ impl Filter {
 
     /// Replaces the constrained components of `v` by their prescribed values.
     pub fn enforce_velocity(&self, v: &mut [Vec3]) {
-        for (p, s, target) in &self.entries {
-            v[*p] = s * v[*p] + (Mat3::identity() - s) * target;
+        for (p, s, held) in &self.entries {
+            v[*p] = s * v[*p] + held;
         }
     }
+}
+
+/// Two constraints on one particle: constrained directions united, prescribed
+/// velocities met in the least-squares sense where they disagree.
+fn merge(s0: Mat3, held0: Vec3, s1: Mat3, held1: Vec3) -> (Mat3, Vec3) {
+    let m = (Mat3::identity() - s0) + (Mat3::identity() - s1);
+    let eig = m.symmetric_eigen();
+    let (mut constrained, mut pinv) = (Mat3::zeros(), Mat3::zeros());
+    for k in 0..3 {
+        if eig.eigenvalues[k] > 1e-9 {
+            let e = eig.eigenvectors.column(k);
+            constrained += e * e.transpose();
+            pinv += e * e.transpose() / eig.eigenvalues[k];
+        }
+    }
+    (Mat3::identity() - constrained, pinv * (held0 + held1))
 }

@@ -1,16 +1,21 @@
 //! The validated cloth mesh.
 
 use super::topology::{edges_and_hinges, Hinge};
+
 use crate::error::MeshError;
 use crate::Vec3;
 use nalgebra::Vector2;
 
 /// Shape of a regular warp/weft grid: vertex `j * nx + i` sits at thread crossing (i, j),
 /// `i` counting along the warp (u), `j` along the weft (v).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GridShape {
     pub nx: usize,
     pub ny: usize,
+    /// Spacing along the warp and the weft, m.
+    pub du: f64,
+    pub dv: f64,
+    pub diagonals: super::GridDiagonals,
 }
 
 impl GridShape {

@@ -108,7 +108,7 @@ impl SimulationBuilder {
                 y: zeros.clone(),
                 x_new: zeros.clone(),
                 v_new: zeros,
-                filter: Filter::default(),
+                filter: Filter::new(n),
                 pcg: Pcg::new(n),
             },
         })
@@ -175,8 +175,9 @@ impl Simulation {
     pub fn step_count(&self) -> u64 {
         self.steps
     }
-    /// The mesh constant scaling hinge stiffness from the bending rigidity.
-    pub fn bending_calibration(&self) -> f64 {
+    /// The factors scaling the warp and weft bending rigidities into hinge stiffnesses
+    /// (see [`crate::energy::bending::calibration`]).
+    pub fn bending_calibration(&self) -> [f64; 2] {
         self.model.bending_calibration()
     }
     /// Changes the integrator or its settings between steps.
@@ -185,8 +186,20 @@ impl Simulation {
         self.settings = settings;
         Ok(())
     }
-    pub fn set_velocities(&mut self, v: &[Vec3]) {
+    /// Replaces the velocities (one finite vector per particle).
+    pub fn set_velocities(&mut self, v: &[Vec3]) -> Result<(), ParamError> {
+        if v.len() != self.v.len() {
+            return Err(ParamError::OutOfRange {
+                name: "velocities",
+                value: v.len() as f64,
+                expected: "one velocity per particle",
+            });
+        }
+        if let Some(c) = v.iter().flat_map(|vi| vi.iter()).find(|c| !c.is_finite()) {
+            return Err(ParamError::OutOfRange { name: "velocities", value: *c, expected: "finite components" });
+        }
         self.v.copy_from_slice(v);
+        Ok(())
     }
     pub fn kinetic_energy(&self) -> f64 {
         kinetic_energy(self.model.masses(), &self.v)
@@ -198,11 +211,19 @@ impl Simulation {
         self.ws.filter.clear();
         for pin in &self.pins {
             let target = pin.target(self.time + h);
-            self.ws.filter.push(&Constraint {
+            if !target.iter().all(|c| c.is_finite()) {
+                return Err(SimError::InvalidPin { step: self.steps + 1, particle: pin.particle });
+            }
+            let constraint = Constraint {
                 particle: pin.particle,
                 kind: ConstraintKind::Fixed,
                 velocity: (target - self.x[pin.particle]) / h,
-            });
+            };
+            self.ws.filter.push(&constraint).map_err(|reason| SimError::Solver {
+                step: self.steps + 1,
+                last_good: self.steps,
+                reason,
+            })?;
         }
         let mut stats = match self.settings.integrator {
             Integrator::ImplicitEuler => self.implicit_step(h),
@@ -210,6 +231,10 @@ impl Simulation {
             Integrator::SymplecticEuler => Ok(self.explicit_step(h, true)),
         }
         .map_err(|reason| SimError::Solver { step: self.steps + 1, last_good: self.steps, reason })?;
+        // Land pinned particles on their targets exactly, not to rounding.
+        for pin in &self.pins {
+            self.ws.x_new[pin.particle] = pin.target(self.time + h);
+        }
 
         let masses = self.model.masses();
         let mut max_speed: f64 = 0.0;

@@ -1,0 +1,23 @@
+//! Scenes shared by the integration tests.
+#![allow(dead_code)]
+
+use cloth::{Fabric, GridBuilder, Pin, SimulationBuilder, SolverSettings, Vec3};
+
+/// A square sheet of `n` x `n` particles and `size` metres hanging in the x-z plane from
+/// its two top corners (row j = 0 at z = 0, the weft pointing down).
+pub fn two_corner_sheet(n: usize, size: f64, fabric: Fabric, settings: SolverSettings) -> SimulationBuilder {
+    let mesh = GridBuilder::new(n, n)
+        .size(size, size)
+        .axes(Vec3::x(), -Vec3::z())
+        .build()
+        .expect("valid grid");
+    let g = mesh.grid().expect("grid");
+    SimulationBuilder::new(mesh, fabric)
+        .settings(settings)
+        .pin(Pin::fixed(g.index(0, 0)))
+        .pin(Pin::fixed(g.index(n - 1, 0)))
+}
+
+pub fn max_distance(a: &[Vec3], b: &[Vec3]) -> f64 {
+    a.iter().zip(b).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max)
+}
