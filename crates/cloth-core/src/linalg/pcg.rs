@@ -22,7 +22,7 @@ pub struct PcgSettings {
 
 impl Default for PcgSettings {
     fn default() -> Self {
-        Self { rel_tolerance: 1e-4, max_iterations: 1000 }
+        Self { rel_tolerance: 1e-3, max_iterations: 1000 }
     }
 }
 

@@ -4,29 +4,50 @@
 
 use super::assembly::StiffnessTarget;
 use super::{Simulation, StepStats};
+use crate::linalg::BlockSparse;
 use crate::{Mat3, Vec3};
 use std::time::Instant;
 
 impl Simulation {
-    /// Writes the next state into the workspace.
-    pub(super) fn implicit_step(&mut self, h: f64) -> Result<StepStats, String> {
-        let start = Instant::now();
+    /// Assembles, at the current state, the forces and the unfiltered system matrix
+    /// `A = M + h C_drag + (h^2 + h beta) K` of an implicit step (K the PSD stiffness).
+    /// Returns the potential energy. The step itself calls this; it is public for
+    /// diagnostics and benchmarks.
+    pub fn assemble_system(&mut self) -> f64 {
         let s = &self.settings;
-        let ws = &mut self.ws;
+        let h = s.time_step;
         let beta = self.model.fabric().damping;
-        // A = M + h C_drag + (h^2 + h beta) K, with K the PSD stiffness.
         self.matrix.blocks_mut().fill(Mat3::zeros());
         for (i, &m) in self.model.masses().iter().enumerate() {
             let d = self.matrix.diag_slot(i);
             self.matrix.blocks_mut()[d] = Mat3::from_diagonal_element(m + h * self.model.drag_coefficient(i));
         }
         let target = StiffnessTarget { matrix: &mut self.matrix, scale: h * h + h * beta };
-        let potential = self.model.evaluate(
-            &self.x, &self.v, &s.gravity, &s.wind, &mut ws.force, &mut ws.hv, Some(target), s.parallel,
-        );
+        let ws = &mut self.ws;
+        self.model.evaluate(&self.x, &self.v, &s.gravity, &s.wind, &mut ws.force, &mut ws.hv, Some(target), s.parallel)
+    }
+
+    /// The forces on every particle at the current state (elastic, damping, gravity, drag).
+    pub fn forces(&mut self) -> &[Vec3] {
+        let s = &self.settings;
+        let ws = &mut self.ws;
+        self.model.evaluate(&self.x, &self.v, &s.gravity, &s.wind, &mut ws.force, &mut ws.hv, None, s.parallel);
+        &self.ws.force
+    }
+
+    /// The system matrix as the last implicit step left it (filtered).
+    pub fn system_matrix(&self) -> &BlockSparse {
+        &self.matrix
+    }
+
+    /// Writes the next state into the workspace.
+    pub(super) fn implicit_step(&mut self, h: f64) -> Result<StepStats, String> {
+        let start = Instant::now();
+        let potential = self.assemble_system();
         let assembly_seconds = start.elapsed().as_secs_f64();
 
         let start = Instant::now();
+        let (s, ws) = (&self.settings, &mut self.ws);
         // b = h F0 - h^2 K v0 (F0 already holds the damping force -beta K v0).
         for ((b, f), kv) in ws.rhs.iter_mut().zip(&ws.force).zip(&ws.hv) {
             *b = h * f - (h * h) * kv;
