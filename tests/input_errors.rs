@@ -1,10 +1,17 @@
 //! Bad input gets an error naming the element, field or particle.
 
-use cloth::{ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Pin, SimulationBuilder, TensileLaw, Vec3};
+use cloth::{
+    ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Pin, SimulationBuilder, TensileLaw, Vec3,
+};
 use nalgebra::Vector2;
 
 fn square() -> (Vec<Vec3>, Vec<Vector2<f64>>) {
-    let uv = vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0), Vector2::new(1.0, 1.0), Vector2::new(0.0, 1.0)];
+    let uv = vec![
+        Vector2::new(0.0, 0.0),
+        Vector2::new(1.0, 0.0),
+        Vector2::new(1.0, 1.0),
+        Vector2::new(0.0, 1.0),
+    ];
     (uv.iter().map(|p| Vec3::new(p.x, p.y, 0.0)).collect(), uv)
 }
 
@@ -12,18 +19,45 @@ fn square() -> (Vec<Vec3>, Vec<Vector2<f64>>) {
 fn malformed_meshes_are_refused_with_the_element_named() {
     let (x, uv) = square();
     let err = ClothMesh::new(x.clone(), uv.clone(), vec![[0, 1, 2], [0, 2, 9]]).unwrap_err();
-    assert_eq!(err, MeshError::IndexOutOfRange { triangle: 1, index: 9, vertex_count: 4 });
+    assert_eq!(
+        err,
+        MeshError::IndexOutOfRange {
+            triangle: 1,
+            index: 9,
+            vertex_count: 4
+        }
+    );
     assert!(err.to_string().contains("triangle 1"));
 
     let mut flat_uv = uv.clone();
     flat_uv[2] = Vector2::new(0.5, 0.0); // triangle 0 collapses in uv
     let err = ClothMesh::new(x.clone(), flat_uv, vec![[0, 1, 2], [0, 2, 3]]).unwrap_err();
-    assert!(matches!(err, MeshError::DegenerateTriangle { triangle: 0, space: "uv", .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            MeshError::DegenerateTriangle {
+                triangle: 0,
+                space: "uv",
+                ..
+            }
+        ),
+        "{err}"
+    );
 
     let mut line = x.clone();
     line[3] = Vec3::new(0.5, 0.5, 0.0); // triangle 1 collapses in 3D
     let err = ClothMesh::new(line, uv.clone(), vec![[0, 1, 2], [0, 2, 3]]).unwrap_err();
-    assert!(matches!(err, MeshError::DegenerateTriangle { triangle: 1, space: "3D", .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            MeshError::DegenerateTriangle {
+                triangle: 1,
+                space: "3D",
+                ..
+            }
+        ),
+        "{err}"
+    );
 
     let (mut x5, mut uv5) = (x.clone(), uv.clone());
     x5.push(Vec3::new(0.5, 0.5, 1.0));
@@ -34,12 +68,21 @@ fn malformed_meshes_are_refused_with_the_element_named() {
     let mut nan = x.clone();
     nan[2].y = f64::NAN;
     let err = ClothMesh::new(nan, uv.clone(), vec![[0, 1, 2], [0, 2, 3]]).unwrap_err();
-    assert_eq!(err, MeshError::NonFinite { vertex: 2, field: "position" });
+    assert_eq!(
+        err,
+        MeshError::NonFinite {
+            vertex: 2,
+            field: "position"
+        }
+    );
 
     let err = ClothMesh::new(x.clone(), uv.clone(), vec![[0, 1, 2]]).unwrap_err();
     assert_eq!(err, MeshError::UnusedVertex { vertex: 3 });
     assert_eq!(ClothMesh::new(x, uv, vec![]).unwrap_err(), MeshError::Empty);
-    assert!(matches!(GridBuilder::new(1, 5).build(), Err(MeshError::BadGrid { .. })));
+    assert!(matches!(
+        GridBuilder::new(1, 5).build(),
+        Err(MeshError::BadGrid { .. })
+    ));
 }
 
 #[test]
@@ -51,17 +94,35 @@ fn impossible_parameters_name_the_field() {
     assert!(err.to_string().contains("area_density"), "{err}");
 
     let mut fabric = Fabric::cotton_like();
-    fabric.weft = TensileLaw::PowerLaw { strain_ref: 0.1, tension_ref: 10.0, exponent: 0.5 };
+    fabric.weft = TensileLaw::PowerLaw {
+        strain_ref: 0.1,
+        tension_ref: 10.0,
+        exponent: 0.5,
+    };
     let err = SimulationBuilder::new(mesh.clone(), fabric).build().unwrap_err();
     assert!(err.to_string().contains("weft"), "{err}");
 
-    let err = SimulationBuilder::new(mesh.clone(), Fabric::cotton_like()).time_step(0.0).build().unwrap_err();
+    let err = SimulationBuilder::new(mesh.clone(), Fabric::cotton_like())
+        .time_step(0.0)
+        .build()
+        .unwrap_err();
     assert!(err.to_string().contains("time_step"), "{err}");
 
-    let err = SimulationBuilder::new(mesh.clone(), Fabric::cotton_like()).pin(Pin::fixed(99)).build().unwrap_err();
-    assert_eq!(err, ParamError::PinOutOfRange { particle: 99, count: 16 });
+    let err = SimulationBuilder::new(mesh.clone(), Fabric::cotton_like())
+        .pin(Pin::fixed(99))
+        .build()
+        .unwrap_err();
+    assert_eq!(
+        err,
+        ParamError::PinOutOfRange {
+            particle: 99,
+            count: 16
+        }
+    );
 
-    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like()).build().unwrap();
+    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
+        .build()
+        .unwrap();
     assert!(sim.set_velocities(&[Vec3::zeros(); 3]).is_err());
     assert!(sim.set_velocities(&[Vec3::new(f64::NAN, 0.0, 0.0); 16]).is_err());
 }

@@ -7,7 +7,11 @@ use cloth::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder, SolverSet
 fn hanging_strip_top_strain_is_rho_g_l_over_k() {
     let (length, width, k, rho) = (1.0, 0.05, 50.0, 0.15);
     let (nx, ny) = (6, 101);
-    let mesh = GridBuilder::new(nx, ny).size(width, length).axes(Vec3::x(), -Vec3::z()).build().unwrap();
+    let mesh = GridBuilder::new(nx, ny)
+        .size(width, length)
+        .axes(Vec3::x(), -Vec3::z())
+        .build()
+        .unwrap();
     let g = mesh.grid().unwrap();
     let fabric = Fabric::isotropic_linear(rho, k, 5.0, 1e-6).with_damping(0.01);
     let mut sim = SimulationBuilder::new(mesh, fabric)
@@ -15,7 +19,11 @@ fn hanging_strip_top_strain_is_rho_g_l_over_k() {
         .build()
         .unwrap();
     let out = sim
-        .run_to_rest(&RestCriteria { tolerance: 1e-8, consecutive_steps: 20, max_steps: 5000 })
+        .run_to_rest(&RestCriteria {
+            tolerance: 1e-8,
+            consecutive_steps: 20,
+            max_steps: 5000,
+        })
         .unwrap();
     assert_eq!(out.reason, StopReason::AtRest, "{out:?}");
     let x = sim.positions();
@@ -25,8 +33,16 @@ fn hanging_strip_top_strain_is_rho_g_l_over_k() {
         / nx as f64;
     let expected = rho * 9.81 * length / k;
     let err = (top - expected).abs() / expected;
-    println!("top strain {top:.6}, rho g L / k = {expected:.6}, error {:.2}% ({} steps)", 100.0 * err, out.steps);
-    assert!(err < 0.02, "top strain {top} vs {expected}: {:.2}% off", 100.0 * err);
+    println!(
+        "top strain {top:.6}, rho g L / k = {expected:.6}, error {:.2}% ({} steps)",
+        100.0 * err,
+        out.steps
+    );
+    assert!(
+        err < 0.02,
+        "top strain {top} vs {expected}: {:.2}% off",
+        100.0 * err
+    );
 }
 
 /// A strip clamped at one end bends under its own weight. For a small load
@@ -50,19 +66,38 @@ fn clamped_strip_tip_drop_converges_to_beam_theory() {
         let pins = (0..ny).flat_map(|j| [Pin::fixed(g.index(0, j)), Pin::fixed(g.index(1, j))]);
         let mut sim = SimulationBuilder::new(mesh, fabric).pins(pins).build().unwrap();
         let out = sim
-            .run_to_rest(&RestCriteria { tolerance: 1e-9, consecutive_steps: 20, max_steps: 5000 })
+            .run_to_rest(&RestCriteria {
+                tolerance: 1e-9,
+                consecutive_steps: 20,
+                max_steps: 5000,
+            })
             .unwrap();
         assert_eq!(out.reason, StopReason::AtRest, "{out:?}");
-        let drop = -(0..ny).map(|j| sim.positions()[g.index(nx - 1, j)].z).sum::<f64>() / ny as f64;
-        println!("{cells} cells: tip drop {drop:.6e} m, beam theory {expected:.6e} m ({} steps)", out.steps);
+        let drop = -(0..ny)
+            .map(|j| sim.positions()[g.index(nx - 1, j)].z)
+            .sum::<f64>()
+            / ny as f64;
+        println!(
+            "{cells} cells: tip drop {drop:.6e} m, beam theory {expected:.6e} m ({} steps)",
+            out.steps
+        );
         drops.push(drop);
     }
     let errors: Vec<f64> = drops.iter().map(|d| (d - expected) / expected).collect();
     let extrapolated = 2.0 * drops[1] - drops[0];
     println!("relative errors {errors:?}, extrapolated {extrapolated:.6e}");
-    assert!(errors.iter().all(|e| e.abs() < 0.08), "tip drops {drops:?} vs {expected}");
-    assert!(errors[1].abs() < 0.6 * errors[0].abs(), "no convergence: {errors:?}");
-    assert!((extrapolated - expected).abs() < 0.01 * expected, "extrapolated {extrapolated} vs {expected}");
+    assert!(
+        errors.iter().all(|e| e.abs() < 0.08),
+        "tip drops {drops:?} vs {expected}"
+    );
+    assert!(
+        errors[1].abs() < 0.6 * errors[0].abs(),
+        "no convergence: {errors:?}"
+    );
+    assert!(
+        (extrapolated - expected).abs() < 0.01 * expected,
+        "extrapolated {extrapolated} vs {expected}"
+    );
 }
 
 /// Bending across the warp and across the weft of a grid with non-square cells both
@@ -73,40 +108,65 @@ fn anisotropic_cells_and_rigidity_bend_at_their_own_rigidity() {
     let q = rho * 9.81;
     for (along_warp, b_warp, b_weft) in [(true, 5e-3, 2.5e-3), (false, 5e-3, 2.5e-3)] {
         // Cells of 2.5 mm along the strip and 5 mm across it, whichever thread it follows.
-        let (du, dv) = if along_warp { (0.0025, 0.005) } else { (0.005, 0.0025) };
+        let (du, dv) = if along_warp {
+            (0.0025, 0.005)
+        } else {
+            (0.005, 0.0025)
+        };
         let (cells_u, cells_v) = if along_warp {
             ((length / du).round() as usize, (width / dv).round() as usize)
         } else {
             ((width / du).round() as usize, (length / dv).round() as usize)
         };
-        let mesh = GridBuilder::new(cells_u + 1 + along_warp as usize, cells_v + 1 + !along_warp as usize)
-            .spacing(du, dv)
-            .build()
-            .unwrap();
+        let mesh = GridBuilder::new(
+            cells_u + 1 + along_warp as usize,
+            cells_v + 1 + !along_warp as usize,
+        )
+        .spacing(du, dv)
+        .build()
+        .unwrap();
         let g = mesh.grid().unwrap();
         let mut fabric = Fabric::isotropic_linear(rho, 1e6, 1e4, b_warp);
         fabric.bending.weft = b_weft;
         let b = if along_warp { b_warp } else { b_weft };
         let pins: Vec<Pin> = if along_warp {
-            (0..g.ny).flat_map(|j| [Pin::fixed(g.index(0, j)), Pin::fixed(g.index(1, j))]).collect()
+            (0..g.ny)
+                .flat_map(|j| [Pin::fixed(g.index(0, j)), Pin::fixed(g.index(1, j))])
+                .collect()
         } else {
-            (0..g.nx).flat_map(|i| [Pin::fixed(g.index(i, 0)), Pin::fixed(g.index(i, 1))]).collect()
+            (0..g.nx)
+                .flat_map(|i| [Pin::fixed(g.index(i, 0)), Pin::fixed(g.index(i, 1))])
+                .collect()
         };
         let mut sim = SimulationBuilder::new(mesh, fabric).pins(pins).build().unwrap();
         let out = sim
-            .run_to_rest(&RestCriteria { tolerance: 1e-9, consecutive_steps: 20, max_steps: 5000 })
+            .run_to_rest(&RestCriteria {
+                tolerance: 1e-9,
+                consecutive_steps: 20,
+                max_steps: 5000,
+            })
             .unwrap();
         assert_eq!(out.reason, StopReason::AtRest);
         let tip: Vec<f64> = if along_warp {
-            (0..g.ny).map(|j| -sim.positions()[g.index(g.nx - 1, j)].z).collect()
+            (0..g.ny)
+                .map(|j| -sim.positions()[g.index(g.nx - 1, j)].z)
+                .collect()
         } else {
-            (0..g.nx).map(|i| -sim.positions()[g.index(i, g.ny - 1)].z).collect()
+            (0..g.nx)
+                .map(|i| -sim.positions()[g.index(i, g.ny - 1)].z)
+                .collect()
         };
         let drop = tip.iter().sum::<f64>() / tip.len() as f64;
         let expected = q * length.powi(4) / (8.0 * b);
-        println!("along warp {along_warp}: drop {drop:.5e}, beam {expected:.5e}, kappa {:?}", sim.bending_calibration());
+        println!(
+            "along warp {along_warp}: drop {drop:.5e}, beam {expected:.5e}, kappa {:?}",
+            sim.bending_calibration()
+        );
         // The discretisation of the 40-cell case above: within 6%.
-        assert!((drop - expected).abs() < 0.06 * expected, "along warp {along_warp}: {drop} vs {expected}");
+        assert!(
+            (drop - expected).abs() < 0.06 * expected,
+            "along warp {along_warp}: {drop} vs {expected}"
+        );
     }
 }
 
@@ -114,7 +174,11 @@ fn anisotropic_cells_and_rigidity_bend_at_their_own_rigidity() {
 #[test]
 fn strain_metrics_read_a_known_stretch() {
     let mesh = GridBuilder::new(7, 5).size(0.3, 0.2).build().unwrap();
-    let x: Vec<Vec3> = mesh.uv().iter().map(|p| Vec3::new(1.1 * p.x, 0.0, -1.05 * p.y)).collect();
+    let x: Vec<Vec3> = mesh
+        .uv()
+        .iter()
+        .map(|p| Vec3::new(1.1 * p.x, 0.0, -1.05 * p.y))
+        .collect();
     let report = cloth::StrainReport::new(&mesh, &x);
     assert!((report.max_warp - 10.0).abs() < 1e-9 && (report.p99_warp - 10.0).abs() < 1e-9);
     assert!((report.max_weft - 5.0).abs() < 1e-9 && (report.p99_weft - 5.0).abs() < 1e-9);

@@ -81,7 +81,11 @@ impl std::fmt::Display for DivergenceReason {
             Self::NonFinite { particle } => {
                 write!(f, "particle {particle} has a non-finite position or velocity")
             }
-            Self::SpeedLimit { particle, speed, limit } => write!(
+            Self::SpeedLimit {
+                particle,
+                speed,
+                limit,
+            } => write!(
                 f,
                 "particle {particle} moves at {speed:.3e} m/s, over the limit of {limit} m/s"
             ),

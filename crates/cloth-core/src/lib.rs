@@ -6,6 +6,10 @@
 //! implicit one through a filtered block-sparse PCG (Baraff & Witkin 1998,
 //! Ascher & Boxerman 2003). No file formats, no collision library, no I/O.
 
+// `!(x > 0.0)` is how NaN is refused along with the out-of-range values; indexed loops
+// read better than iterator chains in the small dense element algebra.
+#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
+
 pub mod energy;
 pub mod error;
 pub mod fabric;

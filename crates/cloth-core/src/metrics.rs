@@ -23,7 +23,8 @@ impl StrainReport {
         let uv = mesh.uv();
         let (mut warp, mut weft) = (Vec::new(), Vec::new());
         for t in mesh.triangles() {
-            let rest = TriangleRest::new(t.map(|i| uv[i])).expect("validated mesh has no degenerate triangle");
+            let rest =
+                TriangleRest::new(t.map(|i| uv[i])).expect("validated mesh has no degenerate triangle");
             let (wu, wv) = rest.deformation(&t.map(|i| positions[i]));
             warp.push(100.0 * (wu.norm() - 1.0));
             weft.push(100.0 * (wv.norm() - 1.0));

@@ -3,8 +3,8 @@
 //! elements; PSD of the solver's Jacobians; zero net force and torque.
 
 use cloth_core::energy::{
-    bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch,
-    stretch::ThreadLaw, HessianMode, Local, TriangleRest,
+    bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch, stretch::ThreadLaw,
+    HessianMode, Local, TriangleRest,
 };
 use cloth_core::{BendingLaw, TensileLaw, Vec3};
 use nalgebra::{DMatrix, Rotation3, Vector2};
@@ -14,7 +14,11 @@ use rand::{Rng, SeedableRng};
 const H: f64 = 1e-6;
 
 fn random_rotation(rng: &mut StdRng) -> Rotation3<f64> {
-    let axis = Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+    let axis = Vec3::new(
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+    );
     Rotation3::new(axis.normalize() * rng.random_range(0.0..3.0))
 }
 
@@ -25,15 +29,26 @@ fn random_triangle(rng: &mut StdRng) -> (TriangleRest, [Vec3; 3]) {
     loop {
         let uv: [Vector2<f64>; 3] =
             std::array::from_fn(|_| Vector2::new(rng.random_range(0.0..0.05), rng.random_range(0.0..0.05)));
-        let Some(rest) = TriangleRest::new(uv) else { continue };
+        let Some(rest) = TriangleRest::new(uv) else {
+            continue;
+        };
         if rest.area < 2e-4 {
             continue;
         }
-        let (su, sv, sh) = (rng.random_range(0.7..1.3), rng.random_range(0.7..1.3), rng.random_range(-0.6..0.6));
+        let (su, sv, sh) = (
+            rng.random_range(0.7..1.3),
+            rng.random_range(0.7..1.3),
+            rng.random_range(-0.6..0.6),
+        );
         let rot = random_rotation(rng);
         let x = uv.map(|p| {
             let q = Vec3::new(su * p.x + sh * p.y, sv * p.y, 0.0);
-            rot * q + Vec3::new(rng.random_range(-1e-3..1e-3), rng.random_range(-1e-3..1e-3), rng.random_range(-1e-3..1e-3))
+            rot * q
+                + Vec3::new(
+                    rng.random_range(-1e-3..1e-3),
+                    rng.random_range(-1e-3..1e-3),
+                    rng.random_range(-1e-3..1e-3),
+                )
         });
         return (rest, x);
     }
@@ -42,7 +57,11 @@ fn random_triangle(rng: &mut StdRng) -> (TriangleRest, [Vec3; 3]) {
 /// A random hinge folded by up to +-150 degrees, possibly with stretched faces.
 fn random_hinge(rng: &mut StdRng) -> [Vec3; 4] {
     let fold: f64 = rng.random_range(-150f64..150.0).to_radians();
-    let (l, w0, w1) = (rng.random_range(0.01..0.05), rng.random_range(0.005..0.04), rng.random_range(0.005..0.04));
+    let (l, w0, w1) = (
+        rng.random_range(0.01..0.05),
+        rng.random_range(0.005..0.04),
+        rng.random_range(0.005..0.04),
+    );
     let (s0, s1) = (rng.random_range(-0.02..0.02), rng.random_range(-0.02..0.02));
     let x0 = Vec3::zeros();
     let x1 = Vec3::new(l, 0.0, 0.0);
@@ -61,7 +80,11 @@ fn unflat<const N: usize>(q: &[f64]) -> [Vec3; N] {
 }
 
 /// Checks gradient against the energy and the exact Hessian against the gradient.
-fn check_derivatives<const N: usize>(label: &str, x: &[Vec3; N], eval: impl Fn(&[Vec3; N], HessianMode) -> Local<N>) {
+fn check_derivatives<const N: usize>(
+    label: &str,
+    x: &[Vec3; N],
+    eval: impl Fn(&[Vec3; N], HessianMode) -> Local<N>,
+) {
     let local = eval(x, HessianMode::Exact);
     let q = flat(x);
     let grad = flat(&local.grad);
@@ -72,7 +95,10 @@ fn check_derivatives<const N: usize>(label: &str, x: &[Vec3; N], eval: impl Fn(&
         let (mut qp, mut qm) = (q.clone(), q.clone());
         qp[k] += H;
         qm[k] -= H;
-        let (lp, lm) = (eval(&unflat(&qp), HessianMode::Exact), eval(&unflat(&qm), HessianMode::Exact));
+        let (lp, lm) = (
+            eval(&unflat(&qp), HessianMode::Exact),
+            eval(&unflat(&qm), HessianMode::Exact),
+        );
         let fd = (lp.energy - lm.energy) / (2.0 * H);
         assert!(
             (fd - grad[k]).abs() <= 1e-5 * gscale,
@@ -89,31 +115,60 @@ fn check_derivatives<const N: usize>(label: &str, x: &[Vec3; N], eval: impl Fn(&
             );
         }
     }
-    assert!((&hess - hess.transpose()).amax() <= 1e-9 * hscale, "{label}: exact Hessian not symmetric");
+    assert!(
+        (&hess - hess.transpose()).amax() <= 1e-9 * hscale,
+        "{label}: exact Hessian not symmetric"
+    );
 }
 
 fn assert_psd(label: &str, m: &DMatrix<f64>) {
     let scale = m.amax().max(1e-300);
-    assert!((m - m.transpose()).amax() <= 1e-12 * scale, "{label}: not symmetric");
+    assert!(
+        (m - m.transpose()).amax() <= 1e-12 * scale,
+        "{label}: not symmetric"
+    );
     let min = m.clone().symmetric_eigen().eigenvalues.min();
-    assert!(min >= -1e-9 * scale, "{label}: eigenvalue {min} < 0 (scale {scale})");
+    assert!(
+        min >= -1e-9 * scale,
+        "{label}: eigenvalue {min} < 0 (scale {scale})"
+    );
 }
 
 /// Rigid-motion invariance: zero net force and zero net torque.
 fn assert_balanced<const N: usize>(label: &str, x: &[Vec3; N], local: &Local<N>) {
-    let scale = local.grad.iter().map(|g| g.norm()).fold(0.0, f64::max).max(1e-300);
+    let scale = local
+        .grad
+        .iter()
+        .map(|g| g.norm())
+        .fold(0.0, f64::max)
+        .max(1e-300);
     let force: Vec3 = local.grad.iter().sum();
     let torque: Vec3 = x.iter().zip(&local.grad).map(|(p, g)| p.cross(g)).sum();
     let lever = x.iter().map(|p| p.norm()).fold(0.0, f64::max);
     assert!(force.norm() <= 1e-9 * scale, "{label}: net force {force}");
-    assert!(torque.norm() <= 1e-9 * scale * lever, "{label}: net torque {torque}");
+    assert!(
+        torque.norm() <= 1e-9 * scale * lever,
+        "{label}: net torque {torque}"
+    );
 }
 
 fn laws() -> Vec<(&'static str, TensileLaw)> {
     vec![
         ("linear", TensileLaw::Linear { stiffness: 800.0 }),
-        ("piecewise", TensileLaw::PiecewiseLinear { points: vec![[0.02, 5.0], [0.1, 60.0], [0.2, 400.0]] }),
-        ("power", TensileLaw::PowerLaw { strain_ref: 0.1, tension_ref: 50.0, exponent: 2.5 }),
+        (
+            "piecewise",
+            TensileLaw::PiecewiseLinear {
+                points: vec![[0.02, 5.0], [0.1, 60.0], [0.2, 400.0]],
+            },
+        ),
+        (
+            "power",
+            TensileLaw::PowerLaw {
+                strain_ref: 0.1,
+                tension_ref: 50.0,
+                exponent: 2.5,
+            },
+        ),
     ]
 }
 
@@ -122,8 +177,14 @@ fn stretch_forces_and_jacobians_match_finite_differences() {
     let mut rng = StdRng::seed_from_u64(1);
     for (name, law) in laws() {
         let other = TensileLaw::Linear { stiffness: 300.0 };
-        let warp = ThreadLaw { tension: &law, compression: 40.0 };
-        let weft = ThreadLaw { tension: &other, compression: 10.0 };
+        let warp = ThreadLaw {
+            tension: &law,
+            compression: 40.0,
+        };
+        let weft = ThreadLaw {
+            tension: &other,
+            compression: 10.0,
+        };
         for _ in 0..40 {
             let (rest, x) = random_triangle(&mut rng);
             let eval = |x: &[Vec3; 3], mode| {
@@ -142,10 +203,22 @@ fn stretch_forces_and_jacobians_match_finite_differences() {
 #[test]
 fn stretch_projection_is_exact_in_extension() {
     // Pure extension: T >= 0 everywhere, so nothing is clamped.
-    let rest = TriangleRest::new([Vector2::new(0.0, 0.0), Vector2::new(0.02, 0.0), Vector2::new(0.0, 0.02)]).unwrap();
-    let x = [Vec3::zeros(), Vec3::new(0.023, 0.0, 0.0), Vec3::new(0.0, 0.021, 0.0)];
+    let rest = TriangleRest::new([
+        Vector2::new(0.0, 0.0),
+        Vector2::new(0.02, 0.0),
+        Vector2::new(0.0, 0.02),
+    ])
+    .unwrap();
+    let x = [
+        Vec3::zeros(),
+        Vec3::new(0.023, 0.0, 0.0),
+        Vec3::new(0.0, 0.021, 0.0),
+    ];
     let law = TensileLaw::Linear { stiffness: 500.0 };
-    let t = ThreadLaw { tension: &law, compression: 50.0 };
+    let t = ThreadLaw {
+        tension: &law,
+        compression: 50.0,
+    };
     let (mut e, mut p) = (Local::default(), Local::default());
     add_stretch(&rest, t, t, &x, HessianMode::Exact, &mut e);
     add_stretch(&rest, t, t, &x, HessianMode::Projected, &mut p);
@@ -173,13 +246,26 @@ fn shear_forces_and_jacobians_match_finite_differences() {
 fn shear_energy_is_the_source_form() {
     // A right triangle with legs l1, l2 sheared by phi: T = mu_s (l1 l2 / 2) phi^2, mu_s = G/2.
     let (l1, l2, phi, g) = (0.03f64, 0.02f64, 0.2f64, 12.0);
-    let rest = TriangleRest::new([Vector2::new(0.0, 0.0), Vector2::new(l1, 0.0), Vector2::new(0.0, l2)]).unwrap();
+    let rest = TriangleRest::new([
+        Vector2::new(0.0, 0.0),
+        Vector2::new(l1, 0.0),
+        Vector2::new(0.0, l2),
+    ])
+    .unwrap();
     // w_v turned by phi towards w_u, lengths kept.
-    let x = [Vec3::zeros(), Vec3::new(l1, 0.0, 0.0), Vec3::new(l2 * phi.sin(), l2 * phi.cos(), 0.0)];
+    let x = [
+        Vec3::zeros(),
+        Vec3::new(l1, 0.0, 0.0),
+        Vec3::new(l2 * phi.sin(), l2 * phi.cos(), 0.0),
+    ];
     let mut l = Local::default();
     add_shear(&rest, g, &x, HessianMode::None, &mut l);
     let expected = (g / 2.0) * (l1 * l2 / 2.0) * phi * phi;
-    assert!((l.energy - expected).abs() <= 1e-12 * expected, "{} vs {expected}", l.energy);
+    assert!(
+        (l.energy - expected).abs() <= 1e-12 * expected,
+        "{} vs {expected}",
+        l.energy
+    );
 }
 
 #[test]
@@ -207,17 +293,37 @@ fn bend_angle_is_signed_and_zero_when_flat() {
     for _ in 0..20 {
         let fold: f64 = rng.random_range(-170f64..170.0);
         let f = fold.to_radians();
-        let x = [Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.4, 1.0, 0.0), Vec3::new(0.6, -f.cos(), f.sin())];
+        let x = [
+            Vec3::zeros(),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.4, 1.0, 0.0),
+            Vec3::new(0.6, -f.cos(), f.sin()),
+        ];
         let d = bending::dihedral(&x, false).unwrap();
-        assert!((d.psi.abs() - f.abs()).abs() < 1e-12, "fold {fold} gave {}", d.psi.to_degrees());
+        assert!(
+            (d.psi.abs() - f.abs()).abs() < 1e-12,
+            "fold {fold} gave {}",
+            d.psi.to_degrees()
+        );
     }
-    let flat = [Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.4, 1.0, 0.0), Vec3::new(0.6, -1.0, 0.0)];
+    let flat = [
+        Vec3::zeros(),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.4, 1.0, 0.0),
+        Vec3::new(0.6, -1.0, 0.0),
+    ];
     let d = bending::dihedral(&flat, false).unwrap();
     assert_eq!(d.psi, 0.0);
     // When flat the solver's Hessian is the exact one.
     let (mut e, mut p) = (Local::default(), Local::default());
     bending::add_bending(BendingLaw::SourceCosine, 1e-5, &flat, HessianMode::Exact, &mut e);
-    bending::add_bending(BendingLaw::SourceCosine, 1e-5, &flat, HessianMode::Projected, &mut p);
+    bending::add_bending(
+        BendingLaw::SourceCosine,
+        1e-5,
+        &flat,
+        HessianMode::Projected,
+        &mut p,
+    );
     assert!((e.hessian_dense() - p.hessian_dense()).amax() <= 1e-12 * e.hessian_dense().amax());
 }
 
@@ -228,11 +334,20 @@ fn source_bending_law_is_mu_b_cos_squared_half_angle() {
     for theta_deg in [179.0f64, 150.0, 90.0, 45.0] {
         let theta = theta_deg.to_radians();
         let psi = std::f64::consts::PI - theta;
-        let x = [Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.5, 1.0, 0.0), Vec3::new(0.5, -psi.cos(), psi.sin())];
+        let x = [
+            Vec3::zeros(),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.5, 1.0, 0.0),
+            Vec3::new(0.5, -psi.cos(), psi.sin()),
+        ];
         let mut l = Local::default();
         bending::add_bending(BendingLaw::SourceCosine, k, &x, HessianMode::None, &mut l);
         let expected = 2.0 * k * (theta / 2.0).cos().powi(2);
-        assert!((l.energy - expected).abs() <= 1e-12 * expected.max(1e-12), "theta {theta_deg}: {} vs {expected}", l.energy);
+        assert!(
+            (l.energy - expected).abs() <= 1e-12 * expected.max(1e-12),
+            "theta {theta_deg}: {} vs {expected}",
+            l.energy
+        );
     }
 }
 
@@ -244,13 +359,26 @@ fn tensile_laws_are_consistent() {
             let r = law.extension(strain);
             let (p, m) = (law.extension(strain + H), law.extension(strain - H));
             let dt = (p.energy - m.energy) / (2.0 * H);
-            assert!((dt - r.tension).abs() <= 1e-6 * r.tension.abs().max(1.0), "{name}: dW/de {dt} vs T {}", r.tension);
+            assert!(
+                (dt - r.tension).abs() <= 1e-6 * r.tension.abs().max(1.0),
+                "{name}: dW/de {dt} vs T {}",
+                r.tension
+            );
             let ds = (p.tension - m.tension) / (2.0 * H);
-            assert!((ds - r.slope).abs() <= 1e-5 * r.slope.abs().max(1.0), "{name}: dT/de {ds} vs slope {}", r.slope);
-            assert!((law.strain_at(r.tension) - strain).abs() < 1e-9, "{name}: inverse at {strain}");
+            assert!(
+                (ds - r.slope).abs() <= 1e-5 * r.slope.abs().max(1.0),
+                "{name}: dT/de {ds} vs slope {}",
+                r.slope
+            );
+            assert!(
+                (law.strain_at(r.tension) - strain).abs() < 1e-9,
+                "{name}: inverse at {strain}"
+            );
         }
     }
-    let bad = TensileLaw::PiecewiseLinear { points: vec![[0.1, 5.0], [0.05, 8.0]] };
+    let bad = TensileLaw::PiecewiseLinear {
+        points: vec![[0.1, 5.0], [0.05, 8.0]],
+    };
     assert!(bad.validate("warp").unwrap_err().to_string().contains("warp"));
 }
 
@@ -259,12 +387,21 @@ fn damping_and_drag_are_consistent_and_dissipative() {
     let mut rng = StdRng::seed_from_u64(5);
     let (rest, x) = random_triangle(&mut rng);
     let law = TensileLaw::Linear { stiffness: 700.0 };
-    let t = ThreadLaw { tension: &law, compression: 70.0 };
+    let t = ThreadLaw {
+        tension: &law,
+        compression: 70.0,
+    };
     let mut local = Local::default();
     add_stretch(&rest, t, t, &x, HessianMode::Projected, &mut local);
     add_shear(&rest, 20.0, &x, HessianMode::Projected, &mut local);
     let beta = 0.01;
-    let v: [Vec3; 3] = std::array::from_fn(|_| Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)));
+    let v: [Vec3; 3] = std::array::from_fn(|_| {
+        Vec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        )
+    });
     let force = |v: &[Vec3; 3]| {
         let (mut f, mut kv) = ([Vec3::zeros(); 3], [Vec3::zeros(); 3]);
         add_damping(beta, &local, v, &mut f, &mut kv);
@@ -294,6 +431,8 @@ fn damping_and_drag_are_consistent_and_dissipative() {
     assert!(f.dot(&(vi - wind)) < 0.0);
     // Gravity: F = -dE/dx = m g.
     let (m, g, p) = (0.2, Vec3::new(0.0, 0.0, -9.81), Vec3::new(0.1, 0.2, 0.3));
-    let fd = (particle::gravity_energy(m, &g, &(p + Vec3::z() * H)) - particle::gravity_energy(m, &g, &(p - Vec3::z() * H))) / (2.0 * H);
+    let fd = (particle::gravity_energy(m, &g, &(p + Vec3::z() * H))
+        - particle::gravity_energy(m, &g, &(p - Vec3::z() * H)))
+        / (2.0 * H);
     assert!((-fd - m * g.z).abs() < 1e-8);
 }

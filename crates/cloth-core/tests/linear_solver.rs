@@ -54,7 +54,9 @@ fn direct_solve(a: &BlockSparse, b: &[Vec3]) -> Vec<Vec3> {
     let llt = m.sp_cholesky(Side::Lower).unwrap();
     let rhs = Mat::from_fn(3 * n, 1, |i, _| b[i / 3][i % 3]);
     let x = llt.solve(&rhs);
-    (0..n).map(|k| Vec3::new(x[(3 * k, 0)], x[(3 * k + 1, 0)], x[(3 * k + 2, 0)])).collect()
+    (0..n)
+        .map(|k| Vec3::new(x[(3 * k, 0)], x[(3 * k + 1, 0)], x[(3 * k + 2, 0)]))
+        .collect()
 }
 
 fn max_diff(a: &[Vec3], b: &[Vec3]) -> f64 {
@@ -69,11 +71,16 @@ fn pcg_agrees_with_sparse_cholesky() {
     let mut rng = StdRng::seed_from_u64(11);
     for (n, pairs) in [(5, 6), (40, 120), (300, 1200)] {
         let a = random_spd(n, pairs, &mut rng);
-        let b: Vec<Vec3> = (0..n).map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0))).collect();
+        let b: Vec<Vec3> = (0..n)
+            .map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0)))
+            .collect();
         let direct = direct_solve(&a, &b);
         for parallel in [false, true] {
             let mut x = vec![Vec3::zeros(); n];
-            let settings = PcgSettings { rel_tolerance: 1e-12, max_iterations: 20 * 3 * n };
+            let settings = PcgSettings {
+                rel_tolerance: 1e-12,
+                max_iterations: 20 * 3 * n,
+            };
             let out = Pcg::new(n).solve(&a, &b, &mut x, &settings, parallel).unwrap();
             assert!(out.converged && out.rel_residual <= 1e-12, "{out:?}");
             let err = max_diff(&x, &direct) / max_norm(&direct);
@@ -88,15 +95,36 @@ fn pcg_reports_an_iteration_limit_without_failing() {
     let a = random_spd(200, 800, &mut rng);
     let b = vec![Vec3::new(1.0, -1.0, 0.5); 200];
     let mut x = vec![Vec3::zeros(); 200];
-    let out = Pcg::new(200).solve(&a, &b, &mut x, &PcgSettings { rel_tolerance: 1e-14, max_iterations: 3 }, false).unwrap();
+    let out = Pcg::new(200)
+        .solve(
+            &a,
+            &b,
+            &mut x,
+            &PcgSettings {
+                rel_tolerance: 1e-14,
+                max_iterations: 3,
+            },
+            false,
+        )
+        .unwrap();
     assert!(!out.converged);
     assert_eq!(out.iterations, 3);
     // The reported residual is the true one of the returned iterate.
     let mut ax = vec![Vec3::zeros(); 200];
     a.mul(&x, &mut ax, false);
-    let r: f64 = ax.iter().zip(&b).map(|(l, r)| (l - r).norm_squared()).sum::<f64>().sqrt();
+    let r: f64 = ax
+        .iter()
+        .zip(&b)
+        .map(|(l, r)| (l - r).norm_squared())
+        .sum::<f64>()
+        .sqrt();
     let bn: f64 = b.iter().map(|v| v.norm_squared()).sum::<f64>().sqrt();
-    assert!((out.rel_residual - r / bn).abs() < 1e-12, "{} vs {}", out.rel_residual, r / bn);
+    assert!(
+        (out.rel_residual - r / bn).abs() < 1e-12,
+        "{} vs {}",
+        out.rel_residual,
+        r / bn
+    );
 }
 
 #[test]
@@ -104,15 +132,35 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
     let mut rng = StdRng::seed_from_u64(13);
     let n = 60;
     let a = random_spd(n, 200, &mut rng);
-    let b: Vec<Vec3> = (0..n).map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0))).collect();
-    let v0: Vec<Vec3> = (0..n).map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0))).collect();
+    let b: Vec<Vec3> = (0..n)
+        .map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0)))
+        .collect();
+    let v0: Vec<Vec3> = (0..n)
+        .map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0)))
+        .collect();
     let normal = Vec3::new(1.0, 2.0, -0.5).normalize();
     let line = Vec3::new(0.3, -1.0, 0.2).normalize();
     let constraints = [
-        Constraint { particle: 3, kind: ConstraintKind::Fixed, velocity: Vec3::new(0.1, 0.2, 0.3) },
-        Constraint { particle: 4, kind: ConstraintKind::Fixed, velocity: Vec3::zeros() },
-        Constraint { particle: 17, kind: ConstraintKind::Plane { normal }, velocity: normal * 0.7 },
-        Constraint { particle: 30, kind: ConstraintKind::Line { direction: line }, velocity: Vec3::new(0.0, 0.0, -0.4) },
+        Constraint {
+            particle: 3,
+            kind: ConstraintKind::Fixed,
+            velocity: Vec3::new(0.1, 0.2, 0.3),
+        },
+        Constraint {
+            particle: 4,
+            kind: ConstraintKind::Fixed,
+            velocity: Vec3::zeros(),
+        },
+        Constraint {
+            particle: 17,
+            kind: ConstraintKind::Plane { normal },
+            velocity: normal * 0.7,
+        },
+        Constraint {
+            particle: 30,
+            kind: ConstraintKind::Line { direction: line },
+            velocity: Vec3::new(0.0, 0.0, -0.4),
+        },
     ];
     let mut filter = Filter::new(n);
     constraints.iter().for_each(|c| filter.push(c).unwrap());
@@ -128,7 +176,18 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
     filter.filter_matrix(&mut af);
     assert!((af.to_dense() - af.to_dense().transpose()).amax() < 1e-12 * af.to_dense().amax());
     let mut y = vec![Vec3::zeros(); n];
-    let out = Pcg::new(n).solve(&af, &rhs, &mut y, &PcgSettings { rel_tolerance: 1e-13, max_iterations: 5000 }, true).unwrap();
+    let out = Pcg::new(n)
+        .solve(
+            &af,
+            &rhs,
+            &mut y,
+            &PcgSettings {
+                rel_tolerance: 1e-13,
+                max_iterations: 5000,
+            },
+            true,
+        )
+        .unwrap();
     assert!(out.converged);
     filter.project(&mut y);
     let dv: Vec<Vec3> = y.iter().zip(&z).map(|(y, z)| y + z).collect();
@@ -138,14 +197,22 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
     for c in &constraints {
         let s = c.kind.free_projection();
         let held = (Mat3::identity() - s) * (v1[c.particle] - c.velocity);
-        assert!(held.norm() < 1e-12, "particle {}: constrained part off by {held}", c.particle);
+        assert!(
+            held.norm() < 1e-12,
+            "particle {}: constrained part off by {held}",
+            c.particle
+        );
     }
     // Free components satisfy the equations: S (A dv - b) = 0.
     let mut adv = vec![Vec3::zeros(); n];
     a.mul(&dv, &mut adv, false);
     let mut residual: Vec<Vec3> = adv.iter().zip(&b).map(|(l, r)| l - r).collect();
     filter.project(&mut residual);
-    assert!(max_norm(&residual) < 1e-9 * max_norm(&b), "free residual {}", max_norm(&residual));
+    assert!(
+        max_norm(&residual) < 1e-9 * max_norm(&b),
+        "free residual {}",
+        max_norm(&residual)
+    );
 }
 
 #[test]
@@ -153,8 +220,20 @@ fn two_constraints_on_one_particle_unite_their_directions() {
     let n = 3;
     let mut filter = Filter::new(n);
     let (a, b) = (Vec3::z(), Vec3::x());
-    filter.push(&Constraint { particle: 1, kind: ConstraintKind::Plane { normal: a }, velocity: Vec3::new(0.0, 0.0, 0.5) }).unwrap();
-    filter.push(&Constraint { particle: 1, kind: ConstraintKind::Plane { normal: b }, velocity: Vec3::new(-0.2, 0.0, 0.0) }).unwrap();
+    filter
+        .push(&Constraint {
+            particle: 1,
+            kind: ConstraintKind::Plane { normal: a },
+            velocity: Vec3::new(0.0, 0.0, 0.5),
+        })
+        .unwrap();
+    filter
+        .push(&Constraint {
+            particle: 1,
+            kind: ConstraintKind::Plane { normal: b },
+            velocity: Vec3::new(-0.2, 0.0, 0.0),
+        })
+        .unwrap();
     assert_eq!(filter.len(), 1);
     let mut v = vec![Vec3::new(9.0, 0.3, 9.0); n];
     filter.enforce_velocity(&mut v);
@@ -162,12 +241,24 @@ fn two_constraints_on_one_particle_unite_their_directions() {
     assert!((v[1] - Vec3::new(-0.2, 0.3, 0.5)).norm() < 1e-12, "{}", v[1]);
     assert_eq!(v[0], Vec3::new(9.0, 0.3, 9.0));
     // A pin on top of a contact holds everything.
-    filter.push(&Constraint { particle: 1, kind: ConstraintKind::Fixed, velocity: Vec3::new(-0.2, 0.1, 0.5) }).unwrap();
+    filter
+        .push(&Constraint {
+            particle: 1,
+            kind: ConstraintKind::Fixed,
+            velocity: Vec3::new(-0.2, 0.1, 0.5),
+        })
+        .unwrap();
     let mut v = vec![Vec3::new(9.0, 9.0, 9.0); n];
     filter.enforce_velocity(&mut v);
     assert!((v[1] - Vec3::new(-0.2, 0.1, 0.5)).norm() < 1e-12);
     // Degenerate directions are refused with the particle named.
-    let err = filter.push(&Constraint { particle: 2, kind: ConstraintKind::Plane { normal: Vec3::zeros() }, velocity: Vec3::zeros() });
+    let err = filter.push(&Constraint {
+        particle: 2,
+        kind: ConstraintKind::Plane {
+            normal: Vec3::zeros(),
+        },
+        velocity: Vec3::zeros(),
+    });
     assert!(err.unwrap_err().contains("particle 2"));
     filter.clear();
     assert!(filter.is_empty());

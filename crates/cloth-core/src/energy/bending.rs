@@ -51,7 +51,11 @@ pub fn dihedral(x: &[Vec3; 4], with_hessian: bool) -> Option<Dihedral> {
     let grad = [-(g3[0] + g3[1] + g3[2]), g3[0], g3[1], g3[2]];
     let psi = yv.atan2(xv);
     if !with_hessian {
-        return Some(Dihedral { psi, grad, hess: None });
+        return Some(Dihedral {
+            psi,
+            grad,
+            hess: None,
+        });
     }
     let id = Mat3::identity();
     let z = Mat3::zeros();
@@ -60,7 +64,11 @@ pub fn dihedral(x: &[Vec3; 4], with_hessian: bool) -> Option<Dihedral> {
     let hx_ac = b * a.transpose() + ab * id - 2.0 * a * b.transpose();
     let hx_bc = a * a.transpose() - aa * id;
     let hx = [
-        [c * b.transpose() + b * c.transpose() - 2.0 * bc * id, hx_ab, hx_ac],
+        [
+            c * b.transpose() + b * c.transpose() - 2.0 * bc * id,
+            hx_ab,
+            hx_ac,
+        ],
         [hx_ab.transpose(), z, hx_bc],
         [hx_ac.transpose(), hx_bc.transpose(), z],
     ];
@@ -101,7 +109,11 @@ pub fn dihedral(x: &[Vec3; 4], with_hessian: bool) -> Option<Dihedral> {
         hess[0][k + 1] = -row.transpose();
     }
     hess[0][0] = h3.iter().flatten().sum();
-    Some(Dihedral { psi, grad, hess: Some(hess) })
+    Some(Dihedral {
+        psi,
+        grad,
+        hess: Some(hess),
+    })
 }
 
 /// Adds the bending energy of one hinge with stiffness `k` (N*m per rad^2).
@@ -173,7 +185,11 @@ fn hinge_rest(mesh: &ClothMesh, edge: [usize; 2], opposite: [usize; 2]) -> (f64,
 /// Bias bending on grids comes out stiffer than the rigidity interpolated for it.
 pub fn calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> [f64; 2] {
     let patch = mesh.grid().and_then(|g| {
-        crate::mesh::GridBuilder::new(25, 25).spacing(g.du, g.dv).diagonals(g.diagonals).build().ok()
+        crate::mesh::GridBuilder::new(25, 25)
+            .spacing(g.du, g.dv)
+            .diagonals(g.diagonals)
+            .build()
+            .ok()
     });
     relaxed_calibration(patch.as_ref().unwrap_or(mesh), rigidity).unwrap_or([1.0, 1.0])
 }
@@ -229,7 +245,14 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
                 let (x, y) = (local[k].x, local[k].y);
                 modes += dz[k] * nalgebra::Vector3::new(0.5 * x * x, 0.5 * y * y, x * y);
             }
-            Some(FlatHinge { edge: h.edge, ids, dz, ratio, fold: (tu, tv), modes })
+            Some(FlatHinge {
+                edge: h.edge,
+                ids,
+                dz,
+                ratio,
+                fold: (tu, tv),
+                modes,
+            })
         })
         .collect();
     let target = [0.5 * rigidity.warp / scale, 0.5 * rigidity.weft / scale];
@@ -240,7 +263,10 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
             weft: kappa[1] * rigidity.weft / scale,
             bias: rigidity.bias.map(|b| 0.5 * (kappa[0] + kappa[1]) * b / scale),
         };
-        let k: Vec<f64> = hinges.iter().map(|h| h.ratio * scaled.along_fold(h.fold.0, h.fold.1)).collect();
+        let k: Vec<f64> = hinges
+            .iter()
+            .map(|h| h.ratio * scaled.along_fold(h.fold.0, h.fold.1))
+            .collect();
         let energy = relaxed_energies(mesh, &hinges, &k, &index, free, &ring)?;
         let mut change: f64 = 0.0;
         for d in 0..2 {
@@ -292,11 +318,18 @@ fn relaxed_energies(
             }
         }
     }
-    let diag_max = entries.iter().filter(|((a, c), _)| a == c).map(|(_, v)| *v).fold(0.0, f64::max);
+    let diag_max = entries
+        .iter()
+        .filter(|((a, c), _)| a == c)
+        .map(|(_, v)| *v)
+        .fold(0.0, f64::max);
     for i in 0..free {
         *entries.entry((i, i)).or_default() += 1e-12 * diag_max;
     }
-    let triplets: Vec<_> = entries.into_iter().map(|((r, c), v)| Triplet::new(r, c, v)).collect();
+    let triplets: Vec<_> = entries
+        .into_iter()
+        .map(|((r, c), v)| Triplet::new(r, c, v))
+        .collect();
     let h = SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &triplets).ok()?;
     let x = h.sp_cholesky(faer::Side::Lower).ok()?.solve(&b);
     // Schur complement of the three modes once the fluctuation has relaxed.
@@ -312,7 +345,12 @@ fn relaxed_energies(
     for (imposed, sideways) in [(0usize, 1usize), (1, 0)] {
         // Free amplitudes of the sideways curvature and the twist.
         let f = [sideways, 2];
-        let sff = nalgebra::Matrix2::new(schur[(f[0], f[0])], schur[(f[0], f[1])], schur[(f[1], f[0])], schur[(f[1], f[1])]);
+        let sff = nalgebra::Matrix2::new(
+            schur[(f[0], f[0])],
+            schur[(f[0], f[1])],
+            schur[(f[1], f[0])],
+            schur[(f[1], f[1])],
+        );
         let sfi = nalgebra::Vector2::new(schur[(f[0], imposed)], schur[(f[1], imposed)]);
         let alpha = -sff.lu().solve(&sfi)?;
         let mut amp = nalgebra::Vector3::<f64>::zeros();

@@ -47,14 +47,7 @@ pub fn add_stretch(
 }
 
 #[inline]
-fn add_direction(
-    area: f64,
-    c: &[f64; 3],
-    w: Vec3,
-    law: ThreadLaw,
-    mode: HessianMode,
-    out: &mut Local<3>,
-) {
+fn add_direction(area: f64, c: &[f64; 3], w: Vec3, law: ThreadLaw, mode: HessianMode, out: &mut Local<3>) {
     let len = w.norm();
     if len < 1e-12 {
         return; // a thread collapsed to a point has no direction to pull along

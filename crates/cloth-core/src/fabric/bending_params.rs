@@ -30,7 +30,11 @@ pub struct BendingRigidity {
 
 impl BendingRigidity {
     pub fn isotropic(b: f64) -> Self {
-        Self { warp: b, weft: b, bias: None }
+        Self {
+            warp: b,
+            weft: b,
+            bias: None,
+        }
     }
 
     /// Rigidity against a fold whose line runs along the material direction `(tu, tv)`

@@ -39,44 +39,65 @@ impl TensileLaw {
             if value > 0.0 && value.is_finite() {
                 Ok(())
             } else {
-                Err(ParamError::OutOfRange { name: field, value, expected: "a positive finite number" })
+                Err(ParamError::OutOfRange {
+                    name: field,
+                    value,
+                    expected: "a positive finite number",
+                })
             }
         };
         match self {
             Self::Linear { stiffness } => positive(name, *stiffness),
             Self::PiecewiseLinear { points } => {
                 if points.is_empty() {
-                    return Err(ParamError::BadCurve { name, reason: "no points".into() });
+                    return Err(ParamError::BadCurve {
+                        name,
+                        reason: "no points".into(),
+                    });
                 }
                 let mut prev = [0.0, 0.0];
                 for (k, p) in points.iter().enumerate() {
                     if !(p[0] > prev[0]) || !p[0].is_finite() {
                         return Err(ParamError::BadCurve {
                             name,
-                            reason: format!("point {k}: strain {} must be finite and exceed {}", p[0], prev[0]),
+                            reason: format!(
+                                "point {k}: strain {} must be finite and exceed {}",
+                                p[0], prev[0]
+                            ),
                         });
                     }
                     if !(p[1] >= prev[1]) || !p[1].is_finite() {
                         return Err(ParamError::BadCurve {
                             name,
-                            reason: format!("point {k}: tension {} must be finite and not below {}", p[1], prev[1]),
+                            reason: format!(
+                                "point {k}: tension {} must be finite and not below {}",
+                                p[1], prev[1]
+                            ),
                         });
                     }
                     prev = *p;
                 }
                 if prev[1] <= 0.0 {
-                    return Err(ParamError::BadCurve { name, reason: "tension never rises above zero".into() });
+                    return Err(ParamError::BadCurve {
+                        name,
+                        reason: "tension never rises above zero".into(),
+                    });
                 }
                 Ok(())
             }
-            Self::PowerLaw { strain_ref, tension_ref, exponent } => {
+            Self::PowerLaw {
+                strain_ref,
+                tension_ref,
+                exponent,
+            } => {
                 positive(name, *strain_ref)?;
                 positive(name, *tension_ref)?;
                 if !(*exponent >= 1.0) || !exponent.is_finite() {
                     return Err(ParamError::OutOfRange {
                         name,
                         value: *exponent,
-                        expected: "a power-law exponent >= 1 (an exponent below 1 has infinite stiffness at rest)",
+                        expected:
+                            "a power-law exponent >= 1 (an exponent below 1 has infinite stiffness at rest)",
                     });
                 }
                 Ok(())
@@ -111,7 +132,11 @@ impl TensileLaw {
                 }
                 unreachable!("validated curves have at least one point")
             }
-            Self::PowerLaw { strain_ref, tension_ref, exponent } => {
+            Self::PowerLaw {
+                strain_ref,
+                tension_ref,
+                exponent,
+            } => {
                 let r = strain / strain_ref;
                 let rp = r.powf(*exponent);
                 TensileResponse {
@@ -131,15 +156,21 @@ impl TensileLaw {
     pub fn strain_at(&self, tension: f64) -> f64 {
         match self {
             Self::Linear { stiffness } => tension / stiffness,
-            Self::PowerLaw { strain_ref, tension_ref, exponent } => {
-                strain_ref * (tension / tension_ref).powf(1.0 / exponent)
-            }
+            Self::PowerLaw {
+                strain_ref,
+                tension_ref,
+                exponent,
+            } => strain_ref * (tension / tension_ref).powf(1.0 / exponent),
             Self::PiecewiseLinear { points } => {
                 let (mut s0, mut t0) = (0.0, 0.0);
                 for (k, p) in points.iter().enumerate() {
                     if tension <= p[1] || k == points.len() - 1 {
                         let slope = (p[1] - t0) / (p[0] - s0);
-                        return if slope > 0.0 { s0 + (tension - t0) / slope } else { s0 };
+                        return if slope > 0.0 {
+                            s0 + (tension - t0) / slope
+                        } else {
+                            s0
+                        };
                     }
                     (s0, t0) = (p[0], p[1]);
                 }

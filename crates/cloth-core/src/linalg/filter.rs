@@ -56,7 +56,10 @@ pub struct Filter {
 impl Filter {
     /// A filter for `n` particles.
     pub fn new(n: usize) -> Self {
-        Self { entries: Vec::new(), slot: vec![u32::MAX; n] }
+        Self {
+            entries: Vec::new(),
+            slot: vec![u32::MAX; n],
+        }
     }
     pub fn clear(&mut self) {
         for (p, ..) in &self.entries {
@@ -75,10 +78,17 @@ impl Filter {
         };
         let finite = |v: &Vec3| v.iter().all(|x| x.is_finite());
         if direction.is_some_and(|d| !finite(&d) || d.norm() < 1e-12) || !finite(&c.velocity) {
-            return Err(format!("constraint on particle {} has a zero or non-finite direction or velocity", c.particle));
+            return Err(format!(
+                "constraint on particle {} has a zero or non-finite direction or velocity",
+                c.particle
+            ));
         }
         if c.particle >= self.slot.len() {
-            return Err(format!("constraint on particle {}, but there are {}", c.particle, self.slot.len()));
+            return Err(format!(
+                "constraint on particle {}, but there are {}",
+                c.particle,
+                self.slot.len()
+            ));
         }
         let s = c.kind.free_projection();
         let held = (Mat3::identity() - s) * c.velocity;

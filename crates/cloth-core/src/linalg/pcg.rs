@@ -22,7 +22,10 @@ pub struct PcgSettings {
 
 impl Default for PcgSettings {
     fn default() -> Self {
-        Self { rel_tolerance: 1e-3, max_iterations: 1000 }
+        Self {
+            rel_tolerance: 1e-3,
+            max_iterations: 1000,
+        }
     }
 }
 
@@ -51,7 +54,12 @@ fn blocks(m: MatRef<'_, f64>) -> &[Vec3] {
     bytemuck::cast_slice(m.col(0).try_as_col_major().expect("contiguous column").as_slice())
 }
 fn blocks_mut(m: MatMut<'_, f64>) -> &mut [Vec3] {
-    bytemuck::cast_slice_mut(m.col_mut(0).try_as_col_major_mut().expect("contiguous column").as_slice_mut())
+    bytemuck::cast_slice_mut(
+        m.col_mut(0)
+            .try_as_col_major_mut()
+            .expect("contiguous column")
+            .as_slice_mut(),
+    )
 }
 
 impl LinOp<f64> for Operator<'_> {
@@ -106,7 +114,9 @@ pub struct Pcg {
 
 impl std::fmt::Debug for Pcg {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Pcg").field("blocks", &self.inv_diag.len()).finish()
+        f.debug_struct("Pcg")
+            .field("blocks", &self.inv_diag.len())
+            .finish()
     }
 }
 
@@ -116,7 +126,10 @@ impl Pcg {
         let a = BlockSparse::from_pairs(n.max(1), []);
         let req = conjugate_gradient_scratch(
             BlockJacobi { inv: &inv_diag },
-            Operator { a: &a, parallel: false },
+            Operator {
+                a: &a,
+                parallel: false,
+            },
             1,
             Par::Seq,
         );
@@ -143,9 +156,10 @@ impl Pcg {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
         for (r, inv) in self.inv_diag.iter_mut().enumerate() {
             let d = a.blocks()[a.diag_slot(r)];
-            *inv = d.cholesky().map(|c| c.inverse()).ok_or_else(|| {
-                format!("diagonal block of particle {r} is not positive definite")
-            })?;
+            *inv = d
+                .cholesky()
+                .map(|c| c.inverse())
+                .ok_or_else(|| format!("diagonal block of particle {r} is not positive definite"))?;
         }
         blocks_mut(self.rhs.as_mut()).copy_from_slice(b);
         blocks_mut(self.sol.as_mut()).copy_from_slice(x);

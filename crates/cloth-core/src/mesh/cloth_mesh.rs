@@ -55,7 +55,10 @@ impl ClothMesh {
         }
         for (vertex, p) in positions.iter().enumerate() {
             if !p.iter().all(|c| c.is_finite()) {
-                return Err(MeshError::NonFinite { vertex, field: "position" });
+                return Err(MeshError::NonFinite {
+                    vertex,
+                    field: "position",
+                });
             }
             if !uv[vertex].iter().all(|c| c.is_finite()) {
                 return Err(MeshError::NonFinite { vertex, field: "uv" });
@@ -79,12 +82,20 @@ impl ClothMesh {
             let (e1, e2) = (uv[b] - uv[a], uv[c] - uv[a]);
             let area_uv = 0.5 * (e1.x * e2.y - e1.y * e2.x).abs();
             if is_degenerate(area_uv, [uv[a], uv[b], uv[c]].map(|p| p.push(0.0))) {
-                return Err(MeshError::DegenerateTriangle { triangle: t, space: "uv", area: area_uv });
+                return Err(MeshError::DegenerateTriangle {
+                    triangle: t,
+                    space: "uv",
+                    area: area_uv,
+                });
             }
             let (p, q, r) = (positions[a], positions[b], positions[c]);
             let area_3d = 0.5 * (q - p).cross(&(r - p)).norm();
             if is_degenerate(area_3d, [p, q, r]) {
-                return Err(MeshError::DegenerateTriangle { triangle: t, space: "3D", area: area_3d });
+                return Err(MeshError::DegenerateTriangle {
+                    triangle: t,
+                    space: "3D",
+                    area: area_3d,
+                });
             }
         }
         let mut used = vec![false; n];
@@ -93,7 +104,14 @@ impl ClothMesh {
             return Err(MeshError::UnusedVertex { vertex });
         }
         let (edges, hinges) = edges_and_hinges(&triangles)?;
-        Ok(Self { positions, uv, triangles, edges, hinges, grid: None })
+        Ok(Self {
+            positions,
+            uv,
+            triangles,
+            edges,
+            hinges,
+            grid: None,
+        })
     }
 
     pub(crate) fn with_grid(mut self, grid: GridShape) -> Self {

@@ -75,7 +75,13 @@ impl GridBuilder {
         if nx < 2 || ny < 2 || !(du > 0.0) || !(dv > 0.0) || !du.is_finite() || !dv.is_finite() {
             return Err(MeshError::BadGrid { nx, ny, du, dv });
         }
-        let shape = GridShape { nx, ny, du, dv, diagonals: self.diagonals };
+        let shape = GridShape {
+            nx,
+            ny,
+            du,
+            dv,
+            diagonals: self.diagonals,
+        };
         let mut positions = Vec::with_capacity(nx * ny);
         let mut uv = Vec::with_capacity(nx * ny);
         for j in 0..ny {

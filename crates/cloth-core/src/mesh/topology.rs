@@ -13,12 +13,9 @@ pub struct Hinge {
 
 /// Unique edges (sorted vertex pairs) and hinges of a triangle list; fails on an
 /// edge shared by more than two triangles.
-pub(crate) fn edges_and_hinges(
-    triangles: &[[usize; 3]],
-) -> Result<(Vec<[usize; 2]>, Vec<Hinge>), MeshError> {
+pub(crate) fn edges_and_hinges(triangles: &[[usize; 3]]) -> Result<(Vec<[usize; 2]>, Vec<Hinge>), MeshError> {
     // edge -> (first triangle's opposite vertex, second's, count)
-    let mut map: HashMap<[usize; 2], (usize, usize, usize)> =
-        HashMap::with_capacity(triangles.len() * 2);
+    let mut map: HashMap<[usize; 2], (usize, usize, usize)> = HashMap::with_capacity(triangles.len() * 2);
     let mut order = Vec::with_capacity(triangles.len() * 2);
     for tri in triangles {
         for k in 0..3 {

@@ -6,8 +6,8 @@
 //! colours run in a fixed order, so the sums are the same for any thread count.
 
 use crate::energy::{
-    bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch,
-    stretch::ThreadLaw, HessianMode, Local, TriangleRest,
+    bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch, stretch::ThreadLaw,
+    HessianMode, Local, TriangleRest,
 };
 use crate::fabric::Fabric;
 use crate::linalg::BlockSparse;
@@ -38,12 +38,14 @@ struct HingeElement {
 struct Shared<T>(*mut T);
 unsafe impl<T> Send for Shared<T> {}
 unsafe impl<T> Sync for Shared<T> {}
-impl<T> Shared<T> {
+impl<T: std::ops::AddAssign> Shared<T> {
+    /// `target[i] += value`.
+    ///
     /// # Safety
-    /// No other thread may access index `i` at the same time.
+    /// `i` is in bounds and no other thread accesses index `i` at the same time.
     #[inline]
-    unsafe fn at(&self, i: usize) -> &mut T {
-        unsafe { &mut *self.0.add(i) }
+    unsafe fn add(&self, i: usize, value: T) {
+        unsafe { *self.0.add(i) += value }
     }
 }
 
@@ -171,7 +173,11 @@ impl ForceModel {
     ) -> f64 {
         let beta = self.fabric.damping;
         let need_k = stiffness.is_some() || beta > 0.0;
-        let mode = if need_k { HessianMode::Projected } else { HessianMode::None };
+        let mode = if need_k {
+            HessianMode::Projected
+        } else {
+            HessianMode::None
+        };
         let (masses, area, drag) = (&self.masses, &self.vertex_area, self.fabric.drag);
         let init = |(i, (f, h)): (usize, (&mut Vec3, &mut Vec3))| {
             *f = masses[i] * gravity;
@@ -181,7 +187,11 @@ impl ForceModel {
             *h = Vec3::zeros();
         };
         if parallel {
-            force.par_iter_mut().zip(hv.par_iter_mut()).enumerate().for_each(init);
+            force
+                .par_iter_mut()
+                .zip(hv.par_iter_mut())
+                .enumerate()
+                .for_each(init);
         } else {
             force.iter_mut().zip(hv.iter_mut()).enumerate().for_each(init);
         }
@@ -189,10 +199,18 @@ impl ForceModel {
         let fshare = Shared(force.as_mut_ptr());
         let hshare = Shared(hv.as_mut_ptr());
         let scale = stiffness.as_ref().map_or(0.0, |s| s.scale);
-        let mshare = stiffness.as_mut().map(|s| Shared(s.matrix.blocks_mut().as_mut_ptr()));
+        let mshare = stiffness
+            .as_mut()
+            .map(|s| Shared(s.matrix.blocks_mut().as_mut_ptr()));
         let fabric = &self.fabric;
-        let warp = ThreadLaw { tension: &fabric.warp, compression: fabric.compression_warp };
-        let weft = ThreadLaw { tension: &fabric.weft, compression: fabric.compression_weft };
+        let warp = ThreadLaw {
+            tension: &fabric.warp,
+            compression: fabric.compression_warp,
+        };
+        let weft = ThreadLaw {
+            tension: &fabric.weft,
+            compression: fabric.compression_weft,
+        };
 
         let tri_kernel = |e: &TriElement, energy: &mut f64| {
             let xe = e.v.map(|i| x[i as usize]);
@@ -202,7 +220,11 @@ impl ForceModel {
             *energy = local.energy;
             // SAFETY: elements of one colour share no vertex, so no two threads write
             // the same particle or the same matrix row.
-            unsafe { scatter(&local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale) };
+            unsafe {
+                scatter(
+                    &local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale,
+                )
+            };
         };
         let law = fabric.bending_law;
         let hinge_kernel = |e: &HingeElement, energy: &mut f64| {
@@ -211,13 +233,32 @@ impl ForceModel {
             bending::add_bending(law, e.stiffness, &xe, mode, &mut local);
             *energy = local.energy;
             // SAFETY: as above.
-            unsafe { scatter(&local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale) };
+            unsafe {
+                scatter(
+                    &local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale,
+                )
+            };
         };
-        run_colored(&self.tris, &self.tri_colors, &mut self.tri_energy, parallel, tri_kernel);
-        run_colored(&self.hinges, &self.hinge_colors, &mut self.hinge_energy, parallel, hinge_kernel);
+        run_colored(
+            &self.tris,
+            &self.tri_colors,
+            &mut self.tri_energy,
+            parallel,
+            tri_kernel,
+        );
+        run_colored(
+            &self.hinges,
+            &self.hinge_colors,
+            &mut self.hinge_energy,
+            parallel,
+            hinge_kernel,
+        );
 
-        let gravity_energy: f64 =
-            x.iter().zip(masses).map(|(xi, &m)| particle::gravity_energy(m, gravity, xi)).sum();
+        let gravity_energy: f64 = x
+            .iter()
+            .zip(masses)
+            .map(|(xi, &m)| particle::gravity_energy(m, gravity, xi))
+            .sum();
         self.tri_energy.iter().sum::<f64>() + self.hinge_energy.iter().sum::<f64>() + gravity_energy
     }
 }
@@ -249,14 +290,14 @@ unsafe fn scatter<const N: usize>(
     for k in 0..N {
         let i = verts[k] as usize;
         unsafe {
-            *force.at(i) += f[k];
-            *hv.at(i) += kv[k];
+            force.add(i, f[k]);
+            hv.add(i, kv[k]);
         }
     }
     if let Some(m) = matrix {
         for r in 0..N {
             for c in 0..N {
-                unsafe { *m.at(slots[r * N + c] as usize) += scale * local.hess[r][c] };
+                unsafe { m.add(slots[r * N + c] as usize, scale * local.hess[r][c]) };
             }
         }
     }
@@ -327,8 +368,14 @@ mod tests {
     /// A small crumpled sheet: random displacements stretch, compress, shear and fold it.
     fn setup() -> (ClothMesh, ForceModel, BlockSparse, Vec<Vec3>, Vec<Vec3>) {
         let mesh = GridBuilder::new(5, 4).size(0.08, 0.06).build().unwrap();
-        let mut fabric = Fabric::isotropic_linear(0.2, 400.0, 15.0, 2e-5).with_damping(0.02).with_drag(0.3);
-        fabric.warp = crate::TensileLaw::PowerLaw { strain_ref: 0.1, tension_ref: 40.0, exponent: 2.0 };
+        let mut fabric = Fabric::isotropic_linear(0.2, 400.0, 15.0, 2e-5)
+            .with_damping(0.02)
+            .with_drag(0.3);
+        fabric.warp = crate::TensileLaw::PowerLaw {
+            strain_ref: 0.1,
+            tension_ref: 40.0,
+            exponent: 2.0,
+        };
         let (model, matrix) = ForceModel::new(&mesh, fabric);
         let mut rng = StdRng::seed_from_u64(7);
         let x = mesh
@@ -336,7 +383,9 @@ mod tests {
             .iter()
             .map(|p| p + Vec3::from_fn(|_, _| rng.random_range(-0.006..0.006)))
             .collect();
-        let v = (0..mesh.vertex_count()).map(|_| Vec3::from_fn(|_, _| rng.random_range(-0.5..0.5))).collect();
+        let v = (0..mesh.vertex_count())
+            .map(|_| Vec3::from_fn(|_, _| rng.random_range(-0.5..0.5)))
+            .collect();
         (mesh, model, matrix, x, v)
     }
 
@@ -354,10 +403,32 @@ mod tests {
                 let (mut xp, mut xm) = (x.clone(), x.clone());
                 xp[i][d] += h;
                 xm[i][d] -= h;
-                let ep = model.evaluate(&xp, &still, &g, &wind, &mut vec![Vec3::zeros(); n], &mut vec![Vec3::zeros(); n], None, false);
-                let em = model.evaluate(&xm, &still, &g, &wind, &mut vec![Vec3::zeros(); n], &mut vec![Vec3::zeros(); n], None, false);
+                let ep = model.evaluate(
+                    &xp,
+                    &still,
+                    &g,
+                    &wind,
+                    &mut vec![Vec3::zeros(); n],
+                    &mut vec![Vec3::zeros(); n],
+                    None,
+                    false,
+                );
+                let em = model.evaluate(
+                    &xm,
+                    &still,
+                    &g,
+                    &wind,
+                    &mut vec![Vec3::zeros(); n],
+                    &mut vec![Vec3::zeros(); n],
+                    None,
+                    false,
+                );
                 let fd = -(ep - em) / (2.0 * h);
-                assert!((fd - f[i][d]).abs() <= 1e-5 * scale, "particle {i} axis {d}: {} vs {fd}", f[i][d]);
+                assert!(
+                    (fd - f[i][d]).abs() <= 1e-5 * scale,
+                    "particle {i} axis {d}: {} vs {fd}",
+                    f[i][d]
+                );
             }
         }
     }
@@ -368,12 +439,30 @@ mod tests {
         let n = x.len();
         let (g, wind) = (Vec3::zeros(), Vec3::zeros());
         let (mut f, mut hv) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
-        model.evaluate(&x, &v, &g, &wind, &mut f, &mut hv, Some(StiffnessTarget { matrix: &mut matrix, scale: 1.0 }), true);
+        model.evaluate(
+            &x,
+            &v,
+            &g,
+            &wind,
+            &mut f,
+            &mut hv,
+            Some(StiffnessTarget {
+                matrix: &mut matrix,
+                scale: 1.0,
+            }),
+            true,
+        );
         // The same sum, element by element, in dense form.
         let mut dense = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
         let fab = model.fabric().clone();
-        let warp = ThreadLaw { tension: &fab.warp, compression: fab.compression_warp };
-        let weft = ThreadLaw { tension: &fab.weft, compression: fab.compression_weft };
+        let warp = ThreadLaw {
+            tension: &fab.warp,
+            compression: fab.compression_warp,
+        };
+        let weft = ThreadLaw {
+            tension: &fab.weft,
+            compression: fab.compression_weft,
+        };
         let mut add = |ids: &[usize], h: &nalgebra::DMatrix<f64>| {
             for (a, &i) in ids.iter().enumerate() {
                 for (b, &j) in ids.iter().enumerate() {
@@ -387,26 +476,60 @@ mod tests {
         for t in mesh.triangles() {
             let rest = TriangleRest::new(t.map(|i| uv[i])).unwrap();
             let mut l = Local::<3>::default();
-            add_stretch(&rest, warp, weft, &t.map(|i| x[i]), HessianMode::Projected, &mut l);
-            add_shear(&rest, fab.shear_modulus, &t.map(|i| x[i]), HessianMode::Projected, &mut l);
+            add_stretch(
+                &rest,
+                warp,
+                weft,
+                &t.map(|i| x[i]),
+                HessianMode::Projected,
+                &mut l,
+            );
+            add_shear(
+                &rest,
+                fab.shear_modulus,
+                &t.map(|i| x[i]),
+                HessianMode::Projected,
+                &mut l,
+            );
             let h = l.hessian_dense();
-            assert!(h.clone().symmetric_eigen().eigenvalues.min() >= -1e-9 * h.amax(), "triangle block not PSD");
+            assert!(
+                h.clone().symmetric_eigen().eigenvalues.min() >= -1e-9 * h.amax(),
+                "triangle block not PSD"
+            );
             add(t, &h);
         }
         let k = bending::hinge_stiffnesses(&mesh, &fab.bending, bending::calibration(&mesh, &fab.bending));
         for (hinge, k) in mesh.hinges().iter().zip(k) {
             let ids = [hinge.edge[0], hinge.edge[1], hinge.opposite[0], hinge.opposite[1]];
             let mut l = Local::<4>::default();
-            add_bending(fab.bending_law, k, &ids.map(|i| x[i]), HessianMode::Projected, &mut l);
+            add_bending(
+                fab.bending_law,
+                k,
+                &ids.map(|i| x[i]),
+                HessianMode::Projected,
+                &mut l,
+            );
             let h = l.hessian_dense();
-            assert!(h.clone().symmetric_eigen().eigenvalues.min() >= -1e-9 * h.amax().max(1e-300), "hinge block not PSD");
+            assert!(
+                h.clone().symmetric_eigen().eigenvalues.min() >= -1e-9 * h.amax().max(1e-300),
+                "hinge block not PSD"
+            );
             add(&ids, &h);
         }
         let assembled = matrix.to_dense();
         let scale = dense.amax();
-        assert!((&assembled - &dense).amax() <= 1e-12 * scale, "assembly differs from the element sum");
-        assert!((&assembled - assembled.transpose()).amax() <= 1e-12 * scale, "not symmetric");
-        assert!(assembled.symmetric_eigen().eigenvalues.min() >= -1e-9 * scale, "global stiffness not PSD");
+        assert!(
+            (&assembled - &dense).amax() <= 1e-12 * scale,
+            "assembly differs from the element sum"
+        );
+        assert!(
+            (&assembled - assembled.transpose()).amax() <= 1e-12 * scale,
+            "not symmetric"
+        );
+        assert!(
+            assembled.symmetric_eigen().eigenvalues.min() >= -1e-9 * scale,
+            "global stiffness not PSD"
+        );
         // K v returned alongside matches the matrix.
         let mut kv = vec![Vec3::zeros(); n];
         matrix.mul(&v, &mut kv, false);
@@ -423,7 +546,16 @@ mod tests {
         let zero = Vec3::zeros();
         // Elastic forces at rest velocity: no net force, no net torque.
         let mut f = vec![zero; n];
-        model.evaluate(&x, &vec![zero; n], &zero, &zero, &mut f, &mut vec![zero; n], None, false);
+        model.evaluate(
+            &x,
+            &vec![zero; n],
+            &zero,
+            &zero,
+            &mut f,
+            &mut vec![zero; n],
+            None,
+            false,
+        );
         let scale = f.iter().map(|f| f.norm()).fold(0.0, f64::max);
         let net: Vec3 = f.iter().sum();
         let torque: Vec3 = x.iter().zip(&f).map(|(p, f)| p.cross(f)).sum();
@@ -433,15 +565,24 @@ mod tests {
         // proportional damping of a stressed state is not torque-free, so no torque check.
         model.evaluate(&x, &v, &zero, &zero, &mut f, &mut vec![zero; n], None, false);
         let net: Vec3 = f.iter().sum();
-        assert!(net.norm() <= 1e-10 * f.iter().map(|f| f.norm()).fold(0.0, f64::max), "net force {net}");
+        assert!(
+            net.norm() <= 1e-10 * f.iter().map(|f| f.norm()).fold(0.0, f64::max),
+            "net force {net}"
+        );
     }
 
     #[test]
     fn colours_share_no_vertex() {
         let (mesh, model, ..) = setup();
         for (elements, colors) in [
-            (model.tris.iter().map(|e| e.v.to_vec()).collect::<Vec<_>>(), &model.tri_colors),
-            (model.hinges.iter().map(|e| e.v.to_vec()).collect(), &model.hinge_colors),
+            (
+                model.tris.iter().map(|e| e.v.to_vec()).collect::<Vec<_>>(),
+                &model.tri_colors,
+            ),
+            (
+                model.hinges.iter().map(|e| e.v.to_vec()).collect(),
+                &model.hinge_colors,
+            ),
         ] {
             let total: usize = colors.iter().map(|r| r.len()).sum();
             assert_eq!(total, elements.len());
@@ -449,7 +590,10 @@ mod tests {
                 let mut seen = vec![false; mesh.vertex_count()];
                 for e in &elements[r.clone()] {
                     for &v in e {
-                        assert!(!std::mem::replace(&mut seen[v as usize], true), "vertex {v} twice in a colour");
+                        assert!(
+                            !std::mem::replace(&mut seen[v as usize], true),
+                            "vertex {v} twice in a colour"
+                        );
                     }
                 }
             }

@@ -12,7 +12,14 @@ impl Simulation {
         let s = &self.settings;
         let ws = &mut self.ws;
         let potential = self.model.evaluate(
-            &self.x, &self.v, &s.gravity, &s.wind, &mut ws.force, &mut ws.hv, None, s.parallel,
+            &self.x,
+            &self.v,
+            &s.gravity,
+            &s.wind,
+            &mut ws.force,
+            &mut ws.hv,
+            None,
+            s.parallel,
         );
         let assembly_seconds = start.elapsed().as_secs_f64();
         let masses = self.model.masses();

@@ -22,16 +22,37 @@ impl Simulation {
             let d = self.matrix.diag_slot(i);
             self.matrix.blocks_mut()[d] = Mat3::from_diagonal_element(m + h * self.model.drag_coefficient(i));
         }
-        let target = StiffnessTarget { matrix: &mut self.matrix, scale: h * h + h * beta };
+        let target = StiffnessTarget {
+            matrix: &mut self.matrix,
+            scale: h * h + h * beta,
+        };
         let ws = &mut self.ws;
-        self.model.evaluate(&self.x, &self.v, &s.gravity, &s.wind, &mut ws.force, &mut ws.hv, Some(target), s.parallel)
+        self.model.evaluate(
+            &self.x,
+            &self.v,
+            &s.gravity,
+            &s.wind,
+            &mut ws.force,
+            &mut ws.hv,
+            Some(target),
+            s.parallel,
+        )
     }
 
     /// The forces on every particle at the current state (elastic, damping, gravity, drag).
     pub fn forces(&mut self) -> &[Vec3] {
         let s = &self.settings;
         let ws = &mut self.ws;
-        self.model.evaluate(&self.x, &self.v, &s.gravity, &s.wind, &mut ws.force, &mut ws.hv, None, s.parallel);
+        self.model.evaluate(
+            &self.x,
+            &self.v,
+            &s.gravity,
+            &s.wind,
+            &mut ws.force,
+            &mut ws.hv,
+            None,
+            s.parallel,
+        );
         &self.ws.force
     }
 
@@ -62,7 +83,9 @@ impl Simulation {
             ws.filter.filter_matrix(&mut self.matrix);
         }
         ws.filter.project(&mut ws.y);
-        let outcome = ws.pcg.solve(&self.matrix, &ws.rhs, &mut ws.y, &s.pcg, s.parallel)?;
+        let outcome = ws
+            .pcg
+            .solve(&self.matrix, &ws.rhs, &mut ws.y, &s.pcg, s.parallel)?;
         ws.filter.project(&mut ws.y);
         for i in 0..self.x.len() {
             let v: Vec3 = self.v[i] + ws.y[i] + ws.z[i];

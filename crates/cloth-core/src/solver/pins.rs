@@ -33,13 +33,22 @@ pub struct Pin {
 
 impl Pin {
     pub fn fixed(particle: usize) -> Self {
-        Self { particle, motion: PinMotion::Fixed }
+        Self {
+            particle,
+            motion: PinMotion::Fixed,
+        }
     }
     pub fn at(particle: usize, position: Vec3) -> Self {
-        Self { particle, motion: PinMotion::At(position) }
+        Self {
+            particle,
+            motion: PinMotion::At(position),
+        }
     }
     pub fn path(particle: usize, path: impl Fn(f64) -> Vec3 + Send + Sync + 'static) -> Self {
-        Self { particle, motion: PinMotion::Path(Arc::new(path)) }
+        Self {
+            particle,
+            motion: PinMotion::Path(Arc::new(path)),
+        }
     }
 
     /// Where the pin wants its particle at time `t`.

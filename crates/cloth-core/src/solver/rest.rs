@@ -15,7 +15,11 @@ pub struct RestCriteria {
 
 impl Default for RestCriteria {
     fn default() -> Self {
-        Self { tolerance: 1e-5, consecutive_steps: 10, max_steps: 10_000 }
+        Self {
+            tolerance: 1e-5,
+            consecutive_steps: 10,
+            max_steps: 10_000,
+        }
     }
 }
 

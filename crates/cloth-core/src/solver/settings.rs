@@ -54,12 +54,26 @@ impl Default for SolverSettings {
 
 impl SolverSettings {
     pub fn validate(&self) -> Result<(), ParamError> {
-        let bad = |name, value, expected| Err(ParamError::OutOfRange { name, value, expected });
+        let bad = |name, value, expected| {
+            Err(ParamError::OutOfRange {
+                name,
+                value,
+                expected,
+            })
+        };
         if !(self.time_step > 0.0 && self.time_step.is_finite()) {
-            return bad("time_step", self.time_step, "a positive finite time step in seconds");
+            return bad(
+                "time_step",
+                self.time_step,
+                "a positive finite time step in seconds",
+            );
         }
         if !(self.pcg.rel_tolerance > 0.0 && self.pcg.rel_tolerance < 1.0) {
-            return bad("pcg.rel_tolerance", self.pcg.rel_tolerance, "a relative tolerance in (0, 1)");
+            return bad(
+                "pcg.rel_tolerance",
+                self.pcg.rel_tolerance,
+                "a relative tolerance in (0, 1)",
+            );
         }
         if self.pcg.max_iterations == 0 {
             return bad("pcg.max_iterations", 0.0, "at least one iteration");
@@ -68,7 +82,11 @@ impl SolverSettings {
             return bad("max_speed", self.max_speed, "a positive speed limit in m/s");
         }
         if !(self.max_kinetic_energy > 0.0) {
-            return bad("max_kinetic_energy", self.max_kinetic_energy, "a positive energy limit in J");
+            return bad(
+                "max_kinetic_energy",
+                self.max_kinetic_energy,
+                "a positive energy limit in J",
+            );
         }
         for (name, v) in [("gravity", &self.gravity), ("wind", &self.wind)] {
             if let Some(c) = v.iter().find(|c| !c.is_finite()) {

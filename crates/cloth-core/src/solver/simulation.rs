@@ -20,7 +20,13 @@ pub struct SimulationBuilder {
 
 impl SimulationBuilder {
     pub fn new(mesh: ClothMesh, fabric: Fabric) -> Self {
-        Self { mesh, fabric, settings: SolverSettings::default(), pins: Vec::new(), velocities: None }
+        Self {
+            mesh,
+            fabric,
+            settings: SolverSettings::default(),
+            pins: Vec::new(),
+            velocities: None,
+        }
     }
     pub fn settings(mut self, settings: SolverSettings) -> Self {
         self.settings = settings;
@@ -59,7 +65,10 @@ impl SimulationBuilder {
         let mut pins = Vec::with_capacity(self.pins.len());
         for mut pin in self.pins {
             if pin.particle >= n {
-                return Err(ParamError::PinOutOfRange { particle: pin.particle, count: n });
+                return Err(ParamError::PinOutOfRange {
+                    particle: pin.particle,
+                    count: n,
+                });
             }
             if std::mem::replace(&mut pinned[pin.particle], true) {
                 return Err(ParamError::OutOfRange {
@@ -85,7 +94,11 @@ impl SimulationBuilder {
             None => vec![Vec3::zeros(); n],
         };
         if let Some(c) = v.iter().flat_map(|vi| vi.iter()).find(|c| !c.is_finite()) {
-            return Err(ParamError::OutOfRange { name: "velocities", value: *c, expected: "finite components" });
+            return Err(ParamError::OutOfRange {
+                name: "velocities",
+                value: *c,
+                expected: "finite components",
+            });
         }
         let (model, matrix) = ForceModel::new(&self.mesh, self.fabric);
         let zeros = vec![Vec3::zeros(); n];
@@ -196,7 +209,11 @@ impl Simulation {
             });
         }
         if let Some(c) = v.iter().flat_map(|vi| vi.iter()).find(|c| !c.is_finite()) {
-            return Err(ParamError::OutOfRange { name: "velocities", value: *c, expected: "finite components" });
+            return Err(ParamError::OutOfRange {
+                name: "velocities",
+                value: *c,
+                expected: "finite components",
+            });
         }
         self.v.copy_from_slice(v);
         Ok(())
@@ -212,25 +229,35 @@ impl Simulation {
         for pin in &self.pins {
             let target = pin.target(self.time + h);
             if !target.iter().all(|c| c.is_finite()) {
-                return Err(SimError::InvalidPin { step: self.steps + 1, particle: pin.particle });
+                return Err(SimError::InvalidPin {
+                    step: self.steps + 1,
+                    particle: pin.particle,
+                });
             }
             let constraint = Constraint {
                 particle: pin.particle,
                 kind: ConstraintKind::Fixed,
                 velocity: (target - self.x[pin.particle]) / h,
             };
-            self.ws.filter.push(&constraint).map_err(|reason| SimError::Solver {
-                step: self.steps + 1,
-                last_good: self.steps,
-                reason,
-            })?;
+            self.ws
+                .filter
+                .push(&constraint)
+                .map_err(|reason| SimError::Solver {
+                    step: self.steps + 1,
+                    last_good: self.steps,
+                    reason,
+                })?;
         }
         let mut stats = match self.settings.integrator {
             Integrator::ImplicitEuler => self.implicit_step(h),
             Integrator::ExplicitEuler => Ok(self.explicit_step(h, false)),
             Integrator::SymplecticEuler => Ok(self.explicit_step(h, true)),
         }
-        .map_err(|reason| SimError::Solver { step: self.steps + 1, last_good: self.steps, reason })?;
+        .map_err(|reason| SimError::Solver {
+            step: self.steps + 1,
+            last_good: self.steps,
+            reason,
+        })?;
         // Land pinned particles on their targets exactly, not to rounding.
         for pin in &self.pins {
             self.ws.x_new[pin.particle] = pin.target(self.time + h);
@@ -244,12 +271,20 @@ impl Simulation {
             let bad = if !(xn.iter().all(|c| c.is_finite()) && speed.is_finite()) {
                 Some(DivergenceReason::NonFinite { particle: i })
             } else if speed > self.settings.max_speed {
-                Some(DivergenceReason::SpeedLimit { particle: i, speed, limit: self.settings.max_speed })
+                Some(DivergenceReason::SpeedLimit {
+                    particle: i,
+                    speed,
+                    limit: self.settings.max_speed,
+                })
             } else {
                 None
             };
             if let Some(reason) = bad {
-                return Err(SimError::Diverged { step: self.steps + 1, last_good: self.steps, reason });
+                return Err(SimError::Diverged {
+                    step: self.steps + 1,
+                    last_good: self.steps,
+                    reason,
+                });
             }
             max_speed = max_speed.max(speed);
             max_disp = max_disp.max((xn - x0).norm());
@@ -259,7 +294,10 @@ impl Simulation {
             return Err(SimError::Diverged {
                 step: self.steps + 1,
                 last_good: self.steps,
-                reason: DivergenceReason::EnergyLimit { energy: ke, limit: self.settings.max_kinetic_energy },
+                reason: DivergenceReason::EnergyLimit {
+                    energy: ke,
+                    limit: self.settings.max_kinetic_energy,
+                },
             });
         }
         std::mem::swap(&mut self.x, &mut self.ws.x_new);
@@ -277,29 +315,46 @@ impl Simulation {
     /// Steps until at rest (every particle moving less than the tolerance per step for the
     /// given number of consecutive steps) or the step limit, and says which.
     pub fn run_to_rest(&mut self, criteria: &RestCriteria) -> Result<RestOutcome, SimError> {
-        self.run_to_rest_with(criteria, |_| {})
+        self.run_to_rest_with(criteria, |_, _| {})
     }
 
-    /// As [`run_to_rest`](Self::run_to_rest), calling `observe` after every step.
+    /// As [`run_to_rest`](Self::run_to_rest), calling `observe` with the simulation and the
+    /// step's statistics after every step.
     pub fn run_to_rest_with(
         &mut self,
         criteria: &RestCriteria,
-        mut observe: impl FnMut(&StepStats),
+        mut observe: impl FnMut(&Simulation, &StepStats),
     ) -> Result<RestOutcome, SimError> {
         let mut calm = 0u32;
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
             last = self.step()?;
-            observe(&last);
-            calm = if last.max_displacement < criteria.tolerance { calm + 1 } else { 0 };
+            observe(self, &last);
+            calm = if last.max_displacement < criteria.tolerance {
+                calm + 1
+            } else {
+                0
+            };
             if calm >= criteria.consecutive_steps {
-                return Ok(RestOutcome { reason: StopReason::AtRest, steps: k, last });
+                return Ok(RestOutcome {
+                    reason: StopReason::AtRest,
+                    steps: k,
+                    last,
+                });
             }
         }
-        Ok(RestOutcome { reason: StopReason::StepLimit, steps: criteria.max_steps, last })
+        Ok(RestOutcome {
+            reason: StopReason::StepLimit,
+            steps: criteria.max_steps,
+            last,
+        })
     }
 }
 
 fn kinetic_energy(masses: &[f64], v: &[Vec3]) -> f64 {
-    0.5 * masses.iter().zip(v).map(|(m, vi)| m * vi.norm_squared()).sum::<f64>()
+    0.5 * masses
+        .iter()
+        .zip(v)
+        .map(|(m, vi)| m * vi.norm_squared())
+        .sum::<f64>()
 }

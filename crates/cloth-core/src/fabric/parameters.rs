@@ -41,7 +41,9 @@ impl Fabric {
         shear_modulus: f64,
         bending_rigidity: f64,
     ) -> Self {
-        let law = TensileLaw::Linear { stiffness: tensile_stiffness };
+        let law = TensileLaw::Linear {
+            stiffness: tensile_stiffness,
+        };
         Self {
             area_density,
             warp: law.clone(),
@@ -85,7 +87,11 @@ impl Fabric {
                 Err(ParamError::OutOfRange {
                     name,
                     value,
-                    expected: if positive { "a positive finite number" } else { "a finite number >= 0" },
+                    expected: if positive {
+                        "a positive finite number"
+                    } else {
+                        "a finite number >= 0"
+                    },
                 })
             }
         };
