@@ -248,12 +248,20 @@ impl Simulation {
                     reason,
                 })?;
         }
-        let mut stats = match self.settings.integrator {
-            Integrator::ImplicitEuler => self.implicit_step(h),
-            Integrator::ExplicitEuler => Ok(self.explicit_step(h, false)),
-            Integrator::SymplecticEuler => Ok(self.explicit_step(h, true)),
-        }
-        .map_err(|reason| SimError::Solver {
+        // Parallel work started from outside rayon's pool goes through its global injector,
+        // which allocates a block every 63 jobs; run the whole step as one job inside the
+        // pool instead, so the many parallel loops of a step use a worker's own queue.
+        let integrate = |sim: &mut Self| match sim.settings.integrator {
+            Integrator::ImplicitEuler => sim.implicit_step(h),
+            Integrator::ExplicitEuler => Ok(sim.explicit_step(h, false)),
+            Integrator::SymplecticEuler => Ok(sim.explicit_step(h, true)),
+        };
+        let result = if self.settings.parallel && rayon::current_thread_index().is_none() {
+            rayon::scope(|_| integrate(self))
+        } else {
+            integrate(self)
+        };
+        let mut stats = result.map_err(|reason| SimError::Solver {
             step: self.steps + 1,
             last_good: self.steps,
             reason,

@@ -1,0 +1,76 @@
+//! Once a simulation is built (and has taken its first step, which sizes the constraint
+//! list), a step allocates nothing on the heap. In parallel the step enters rayon's
+//! pool once, and rayon's global injector allocates a small block every 63 entries:
+//! at most one allocation per 63 steps, none of ours.
+
+use cloth::{Fabric, GridBuilder, Integrator, Pin, SimulationBuilder, SolverSettings};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn steps_do_not_allocate() {
+    for parallel in [false, true] {
+        for integrator in [
+            Integrator::ImplicitEuler,
+            Integrator::ExplicitEuler,
+            Integrator::SymplecticEuler,
+        ] {
+            let mesh = GridBuilder::new(20, 20).size(0.5, 0.5).build().unwrap();
+            let g = mesh.grid().unwrap();
+            // Forward Euler with Rayleigh damping is stable for h < 2 / (beta omega_max^2), ~1e-5 s here.
+            let h = if integrator == Integrator::ImplicitEuler {
+                1.0 / 60.0
+            } else {
+                5e-6
+            };
+            let settings = SolverSettings {
+                integrator,
+                time_step: h,
+                parallel,
+                ..Default::default()
+            };
+            let mut sim =
+                SimulationBuilder::new(mesh, Fabric::cotton_like().with_damping(1e-3).with_drag(0.1))
+                    .settings(settings)
+                    .pin(Pin::fixed(g.index(0, 19)))
+                    .pin(Pin::path(g.index(19, 19), |t| {
+                        cloth::Vec3::new(0.5, 0.5 + 0.01 * t, 0.0)
+                    }))
+                    .build()
+                    .unwrap();
+            sim.step().unwrap();
+            let before = ALLOCATIONS.load(Ordering::Relaxed);
+            let steps = 126;
+            for _ in 0..steps {
+                sim.step().unwrap();
+            }
+            let count = ALLOCATIONS.load(Ordering::Relaxed) - before;
+            let allowed = if parallel { steps / 63 + 1 } else { 0 };
+            println!("{integrator:?}, parallel {parallel}: {count} allocations in {steps} steps");
+            assert!(
+                count <= allowed,
+                "{integrator:?} (parallel {parallel}) allocated {count} times in {steps} steps"
+            );
+        }
+    }
+}
