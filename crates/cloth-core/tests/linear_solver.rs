@@ -80,8 +80,11 @@ fn pcg_agrees_with_sparse_cholesky() {
             let settings = PcgSettings {
                 rel_tolerance: 1e-12,
                 max_iterations: 20 * 3 * n,
+                ..Default::default()
             };
-            let out = Pcg::new(n).solve(&a, &b, &mut x, &settings, parallel).unwrap();
+            let out = Pcg::new(n)
+                .solve(&a, &b, &mut x, &settings, 0.0, parallel)
+                .unwrap();
             assert!(out.converged && out.rel_residual <= 1e-12, "{out:?}");
             let err = max_diff(&x, &direct) / max_norm(&direct);
             assert!(err < 1e-8, "n = {n}: PCG differs from Cholesky by {err:e}");
@@ -103,7 +106,9 @@ fn pcg_reports_an_iteration_limit_without_failing() {
             &PcgSettings {
                 rel_tolerance: 1e-14,
                 max_iterations: 3,
+                ..Default::default()
             },
+            0.0,
             false,
         )
         .unwrap();
@@ -184,7 +189,9 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
             &PcgSettings {
                 rel_tolerance: 1e-13,
                 max_iterations: 5000,
+                ..Default::default()
             },
+            0.0,
             true,
         )
         .unwrap();

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 /// Stopping rule of the linear solve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct PcgSettings {
     /// Stop when `|r| <= rel_tolerance * |b|`.
     pub rel_tolerance: f64,
@@ -142,7 +142,8 @@ impl Pcg {
         }
     }
 
-    /// Solves `A x = b` for SPD `A`, starting from the `x` given. The operator runs in
+    /// Solves `A x = b` for SPD `A`, starting from the `x` given, to `settings` or to an
+    /// absolute residual `abs_tolerance`, whichever is looser. The operator runs in
     /// parallel when `parallel`; faer's own vector work stays sequential so the result does
     /// not depend on the number of threads.
     pub fn solve(
@@ -151,6 +152,7 @@ impl Pcg {
         b: &[Vec3],
         x: &mut [Vec3],
         settings: &PcgSettings,
+        abs_tolerance: f64,
         parallel: bool,
     ) -> Result<PcgOutcome, String> {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
@@ -166,7 +168,7 @@ impl Pcg {
         // The default MaybeNonZero initial guess: faer 0.24's `Zero` path leaves the
         // residual uninitialised.
         let params = CgParams {
-            abs_tolerance: 0.0,
+            abs_tolerance,
             rel_tolerance: settings.rel_tolerance,
             max_iters: settings.max_iterations,
             ..Default::default()

@@ -148,6 +148,10 @@ impl ForceModel {
     pub fn masses(&self) -> &[f64] {
         &self.masses
     }
+    /// `sqrt(3 sum m_i^2)`: the norm of the mass matrix's diagonal.
+    pub fn mass_norm(&self) -> f64 {
+        (3.0 * self.masses.iter().map(|m| m * m).sum::<f64>()).sqrt()
+    }
     pub fn bending_calibration(&self) -> [f64; 2] {
         self.bending_calibration
     }
@@ -397,32 +401,17 @@ mod tests {
         let (mut f, mut hv) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
         model.evaluate(&x, &still, &g, &wind, &mut f, &mut hv, None, false);
         let scale = f.iter().map(|f| f.norm()).fold(0.0, f64::max);
+        let energy = |model: &mut ForceModel, x: &[Vec3]| {
+            let (mut f, mut hv) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
+            model.evaluate(x, &still, &g, &wind, &mut f, &mut hv, None, false)
+        };
         let h = 1e-7;
         for i in 0..n {
             for d in 0..3 {
                 let (mut xp, mut xm) = (x.clone(), x.clone());
                 xp[i][d] += h;
                 xm[i][d] -= h;
-                let ep = model.evaluate(
-                    &xp,
-                    &still,
-                    &g,
-                    &wind,
-                    &mut vec![Vec3::zeros(); n],
-                    &mut vec![Vec3::zeros(); n],
-                    None,
-                    false,
-                );
-                let em = model.evaluate(
-                    &xm,
-                    &still,
-                    &g,
-                    &wind,
-                    &mut vec![Vec3::zeros(); n],
-                    &mut vec![Vec3::zeros(); n],
-                    None,
-                    false,
-                );
+                let (ep, em) = (energy(&mut model, &xp), energy(&mut model, &xm));
                 let fd = -(ep - em) / (2.0 * h);
                 assert!(
                     (fd - f[i][d]).abs() <= 1e-5 * scale,

@@ -9,20 +9,9 @@ impl Simulation {
     /// prescribed velocity in both.
     pub(super) fn explicit_step(&mut self, h: f64, symplectic: bool) -> StepStats {
         let start = Instant::now();
-        let s = &self.settings;
-        let ws = &mut self.ws;
-        let potential = self.model.evaluate(
-            &self.x,
-            &self.v,
-            &s.gravity,
-            &s.wind,
-            &mut ws.force,
-            &mut ws.hv,
-            None,
-            s.parallel,
-        );
+        let potential = self.evaluate(false);
         let assembly_seconds = start.elapsed().as_secs_f64();
-        let masses = self.model.masses();
+        let (masses, ws) = (self.model.masses(), &mut self.ws);
         for i in 0..self.x.len() {
             ws.v_new[i] = self.v[i] + ws.force[i] * (h / masses[i]);
         }

@@ -14,17 +14,34 @@ impl Simulation {
     /// Returns the potential energy. The step itself calls this; it is public for
     /// diagnostics and benchmarks.
     pub fn assemble_system(&mut self) -> f64 {
+        self.evaluate(true)
+    }
+
+    /// The forces on every particle at the current state (elastic, damping, gravity, drag).
+    pub fn forces(&mut self) -> &[Vec3] {
+        self.evaluate(false);
+        &self.ws.force
+    }
+
+    /// Forces (and `K v`) into the workspace, and with `with_stiffness` the system matrix;
+    /// returns the potential energy.
+    pub(super) fn evaluate(&mut self, with_stiffness: bool) -> f64 {
         let s = &self.settings;
         let h = s.time_step;
-        let beta = self.model.fabric().damping;
-        self.matrix.blocks_mut().fill(Mat3::zeros());
-        for (i, &m) in self.model.masses().iter().enumerate() {
-            let d = self.matrix.diag_slot(i);
-            self.matrix.blocks_mut()[d] = Mat3::from_diagonal_element(m + h * self.model.drag_coefficient(i));
-        }
-        let target = StiffnessTarget {
-            matrix: &mut self.matrix,
-            scale: h * h + h * beta,
+        let target = if with_stiffness {
+            self.matrix.blocks_mut().fill(Mat3::zeros());
+            for (i, &m) in self.model.masses().iter().enumerate() {
+                let d = self.matrix.diag_slot(i);
+                let diagonal = m + h * self.model.drag_coefficient(i);
+                self.matrix.blocks_mut()[d] = Mat3::from_diagonal_element(diagonal);
+            }
+            let beta = self.model.fabric().damping;
+            Some(StiffnessTarget {
+                matrix: &mut self.matrix,
+                scale: h * h + h * beta,
+            })
+        } else {
+            None
         };
         let ws = &mut self.ws;
         self.model.evaluate(
@@ -34,26 +51,9 @@ impl Simulation {
             &s.wind,
             &mut ws.force,
             &mut ws.hv,
-            Some(target),
+            target,
             s.parallel,
         )
-    }
-
-    /// The forces on every particle at the current state (elastic, damping, gravity, drag).
-    pub fn forces(&mut self) -> &[Vec3] {
-        let s = &self.settings;
-        let ws = &mut self.ws;
-        self.model.evaluate(
-            &self.x,
-            &self.v,
-            &s.gravity,
-            &s.wind,
-            &mut ws.force,
-            &mut ws.hv,
-            None,
-            s.parallel,
-        );
-        &self.ws.force
     }
 
     /// The system matrix as the last implicit step left it (filtered).
@@ -83,9 +83,16 @@ impl Simulation {
             ws.filter.filter_matrix(&mut self.matrix);
         }
         ws.filter.project(&mut ws.y);
-        let outcome = ws
-            .pcg
-            .solve(&self.matrix, &ws.rhs, &mut ws.y, &s.pcg, s.parallel)?;
+        // A >= M, so a residual of v |m| leaves an RMS velocity error of about v.
+        let abs_tolerance = self.velocity_accuracy * self.model.mass_norm();
+        let outcome = ws.pcg.solve(
+            &self.matrix,
+            &ws.rhs,
+            &mut ws.y,
+            &s.pcg,
+            abs_tolerance,
+            s.parallel,
+        )?;
         ws.filter.project(&mut ws.y);
         for i in 0..self.x.len() {
             let v: Vec3 = self.v[i] + ws.y[i] + ws.z[i];
