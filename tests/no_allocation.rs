@@ -1,7 +1,7 @@
-//! Once a simulation is built (and has taken its first step, which sizes the constraint
-//! list), a step allocates nothing on the heap. In parallel the step enters rayon's
-//! pool once, and rayon's global injector allocates a small block every 63 entries:
-//! at most one allocation per 63 steps, none of ours.
+//! After its first step a simulation allocates nothing on the heap (the first step is
+//! where faer's matrix kernels size their thread-local buffers, once per thread). In
+//! parallel the step enters rayon's pool once, and rayon's global injector allocates a
+//! small block every 63 entries: at most one allocation per 63 steps, none of ours.
 
 use cloth::{Fabric, GridBuilder, Integrator, Pin, SimulationBuilder, SolverSettings};
 use std::alloc::{GlobalAlloc, Layout, System};

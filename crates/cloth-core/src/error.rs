@@ -57,6 +57,8 @@ pub enum SimError {
         last_good: u64,
         reason: DivergenceReason,
     },
+    #[error(transparent)]
+    Param(#[from] ParamError),
     #[error("pin on particle {particle} has a non-finite target at step {step}; the state of step {} is kept", step - 1)]
     InvalidPin { step: u64, particle: usize },
     #[error("linear solve failed at step {step}: {reason}; the state of step {last_good} is kept")]

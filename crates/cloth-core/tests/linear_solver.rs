@@ -167,7 +167,7 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
             velocity: Vec3::new(0.0, 0.0, -0.4),
         },
     ];
-    let mut filter = Filter::new(n);
+    let mut filter = Filter::new(n, 4);
     constraints.iter().for_each(|c| filter.push(c).unwrap());
 
     // The filtered step as the integrator does it.
@@ -225,7 +225,7 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
 #[test]
 fn two_constraints_on_one_particle_unite_their_directions() {
     let n = 3;
-    let mut filter = Filter::new(n);
+    let mut filter = Filter::new(n, 4);
     let (a, b) = (Vec3::z(), Vec3::x());
     filter
         .push(&Constraint {
@@ -269,4 +269,54 @@ fn two_constraints_on_one_particle_unite_their_directions() {
     assert!(err.unwrap_err().contains("particle 2"));
     filter.clear();
     assert!(filter.is_empty());
+}
+
+#[test]
+fn nearly_parallel_contacts_do_not_blow_up_and_pins_win() {
+    let mut filter = Filter::new(1, 2);
+    let tilt = 5e-5f64;
+    let (a, b) = (Vec3::z(), Vec3::new(tilt.sin(), 0.0, tilt.cos()));
+    filter
+        .push(&Constraint {
+            particle: 0,
+            kind: ConstraintKind::Plane { normal: a },
+            velocity: a * 0.0,
+        })
+        .unwrap();
+    filter
+        .push(&Constraint {
+            particle: 0,
+            kind: ConstraintKind::Plane { normal: b },
+            velocity: b * 0.01,
+        })
+        .unwrap();
+    let v0 = Vec3::new(0.3, -0.2, 7.0);
+    let mut v = vec![v0];
+    filter.enforce_velocity(&mut v);
+    // One constraint direction (the mean normal), met half way in the least-squares
+    // sense; the tangential velocity is untouched.
+    let n = (a + b).normalize();
+    assert!((n.dot(&v[0]) - 0.005).abs() < 1e-9, "{}", v[0]);
+    let tangential = |u: Vec3| u - n * n.dot(&u);
+    assert!((tangential(v[0]) - tangential(v0)).norm() < 1e-12, "{}", v[0]);
+
+    let mut filter = Filter::new(1, 2);
+    let pin = Vec3::new(0.1, 0.2, 0.3);
+    filter
+        .push(&Constraint {
+            particle: 0,
+            kind: ConstraintKind::Fixed,
+            velocity: pin,
+        })
+        .unwrap();
+    filter
+        .push(&Constraint {
+            particle: 0,
+            kind: ConstraintKind::Plane { normal: a },
+            velocity: Vec3::zeros(),
+        })
+        .unwrap();
+    let mut v = vec![Vec3::new(9.0, 9.0, 9.0)];
+    filter.enforce_velocity(&mut v);
+    assert_eq!(v[0], pin);
 }

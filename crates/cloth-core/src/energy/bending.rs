@@ -8,11 +8,10 @@
 //!
 //! The hinge energy is `k f(psi)` with `f = psi^2/2` (quadratic) or `1 - cos psi` (the
 //! source's `mu_b cos^2(theta/2)` with `mu_b = 2k`). The stiffness is scaled from the
-//! continuum rigidity B (N*m) as `k = kappa * B(fold direction) * |e|^2 / (A1 + A2)`
-//! with rest quantities, which makes it independent of the mesh resolution; the mesh
-//! constant `kappa` is calibrated on the rest mesh (see [`calibration`]) so that a
-//! sheet bent to curvature K stores `B K^2 / 2` per unit area, averaged over the
-//! directions of bending.
+//! continuum rigidity B (N*m) as `k = B(fold direction) * |e|^2 / (A1 + A2)` with rest
+//! quantities, which makes it independent of the mesh resolution, and the warp and weft
+//! rigidities are multiplied by factors calibrated on the mesh's cells (see
+//! [`calibration`]) so that bending across either thread comes out at its rigidity B.
 
 use super::{HessianMode, Local};
 use crate::fabric::{BendingLaw, BendingRigidity};
@@ -181,8 +180,10 @@ fn hinge_rest(mesh: &ClothMesh, edge: [usize; 2], opposite: [usize; 2]) -> (f64,
 /// `w` is held at zero on the two outermost vertex rings (a clamped edge, so no smooth
 /// `w` can undo the curvature) and only triangles four or more rings in are counted. A
 /// grid is calibrated on a 24 x 24 patch of the same cells, so a narrow strip gets the
-/// value of its pattern; other meshes on themselves. A mesh with no such interior gets 1.
-/// Bias bending on grids comes out stiffer than the rigidity interpolated for it.
+/// value of its pattern; other meshes on themselves. A non-grid mesh with no triangle
+/// four rings from its boundary (under about nine vertices across) is left at 1, which
+/// on grid-like cells is about a fifth too soft. Bias bending on grids comes out
+/// stiffer than the rigidity interpolated for it.
 pub fn calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> [f64; 2] {
     let patch = mesh.grid().and_then(|g| {
         crate::mesh::GridBuilder::new(25, 25)
@@ -255,6 +256,13 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
             })
         })
         .collect();
+    // A direction without rigidity would leave its modes free and the system singular;
+    // a tiny floor gives the continuous limit (its factor then scales zero anyway).
+    let rigidity = BendingRigidity {
+        warp: rigidity.warp.max(1e-6 * scale),
+        weft: rigidity.weft.max(1e-6 * scale),
+        bias: rigidity.bias,
+    };
     let target = [0.5 * rigidity.warp / scale, 0.5 * rigidity.weft / scale];
     let mut kappa = [1.0, 1.0];
     for _ in 0..ROUNDS {

@@ -54,10 +54,10 @@ pub struct Filter {
 }
 
 impl Filter {
-    /// A filter for `n` particles.
-    pub fn new(n: usize) -> Self {
+    /// A filter for `n` particles with room for `capacity` constraints before it grows.
+    pub fn new(n: usize, capacity: usize) -> Self {
         Self {
-            entries: Vec::new(),
+            entries: Vec::with_capacity(capacity),
             slot: vec![u32::MAX; n],
         }
     }
@@ -155,18 +155,30 @@ impl Filter {
     }
 }
 
-/// Two constraints on one particle: constrained directions united, prescribed
-/// velocities met in the least-squares sense where they disagree.
+/// Two constraints on one particle. A pin (nothing free) wins outright. Otherwise the
+/// constrained directions are united, directions closer than about 6 degrees counting
+/// as one, and the prescribed velocities are met in the least-squares sense.
 fn merge(s0: Mat3, held0: Vec3, s1: Mat3, held1: Vec3) -> (Mat3, Vec3) {
+    if s0 == Mat3::zeros() {
+        return (s0, held0);
+    }
+    if s1 == Mat3::zeros() {
+        return (s1, held1);
+    }
     let m = (Mat3::identity() - s0) + (Mat3::identity() - s1);
     let eig = m.symmetric_eigen();
+    let largest = eig.eigenvalues.max();
     let (mut constrained, mut pinv) = (Mat3::zeros(), Mat3::zeros());
     for k in 0..3 {
-        if eig.eigenvalues[k] > 1e-9 {
+        // Eigenvalue 1 - cos(angle) for two planes at that angle: 1e-2 is about 6 degrees.
+        if eig.eigenvalues[k] > 1e-2 * largest {
             let e = eig.eigenvectors.column(k);
             constrained += e * e.transpose();
             pinv += e * e.transpose() / eig.eigenvalues[k];
         }
     }
-    (Mat3::identity() - constrained, pinv * (held0 + held1))
+    (
+        Mat3::identity() - constrained,
+        constrained * pinv * (held0 + held1),
+    )
 }

@@ -62,7 +62,7 @@ impl Simulation {
     }
 
     /// Writes the next state into the workspace.
-    pub(super) fn implicit_step(&mut self, h: f64) -> Result<StepStats, String> {
+    pub(super) fn implicit_step(&mut self, h: f64, velocity_accuracy: f64) -> Result<StepStats, String> {
         let start = Instant::now();
         let potential = self.assemble_system();
         let assembly_seconds = start.elapsed().as_secs_f64();
@@ -84,7 +84,7 @@ impl Simulation {
         }
         ws.filter.project(&mut ws.y);
         // A >= M, so a residual of v |m| leaves an RMS velocity error of about v.
-        let abs_tolerance = self.velocity_accuracy * self.model.mass_norm();
+        let abs_tolerance = velocity_accuracy * self.model.mass_norm();
         let outcome = ws.pcg.solve(
             &self.matrix,
             &ws.rhs,

@@ -1,6 +1,7 @@
 //! The source's stopping mechanism: run until the cloth is at rest or a step limit.
 
 use super::StepStats;
+use crate::error::ParamError;
 use serde::{Deserialize, Serialize};
 
 /// At rest when every particle moves less than `tolerance` metres per step for
@@ -20,6 +21,32 @@ impl Default for RestCriteria {
             consecutive_steps: 10,
             max_steps: 10_000,
         }
+    }
+}
+
+impl RestCriteria {
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let bad = |name, value, expected| {
+            Err(ParamError::OutOfRange {
+                name,
+                value,
+                expected,
+            })
+        };
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return bad(
+                "rest.tolerance",
+                self.tolerance,
+                "a positive finite distance per step in metres",
+            );
+        }
+        if self.consecutive_steps == 0 {
+            return bad("rest.consecutive_steps", 0.0, "at least one step");
+        }
+        if self.max_steps == 0 {
+            return bad("rest.max_steps", 0.0, "at least one step");
+        }
+        Ok(())
     }
 }
 

@@ -101,6 +101,7 @@ impl SimulationBuilder {
             });
         }
         let (model, matrix) = ForceModel::new(&self.mesh, self.fabric);
+        let pin_count = pins.len();
         let zeros = vec![Vec3::zeros(); n];
         Ok(Simulation {
             mesh: self.mesh,
@@ -112,7 +113,6 @@ impl SimulationBuilder {
             v,
             time: 0.0,
             steps: 0,
-            velocity_accuracy: 0.0,
             ws: Workspace {
                 force: zeros.clone(),
                 hv: zeros.clone(),
@@ -122,7 +122,7 @@ impl SimulationBuilder {
                 y: zeros.clone(),
                 x_new: zeros.clone(),
                 v_new: zeros,
-                filter: Filter::new(n),
+                filter: Filter::new(n, pin_count),
                 pcg: Pcg::new(n),
             },
         })
@@ -157,9 +157,6 @@ pub struct Simulation {
     pub(super) v: Vec<Vec3>,
     pub(super) time: f64,
     pub(super) steps: u64,
-    /// Velocity error (m/s, RMS) the linear solve may stop at, on top of its relative
-    /// tolerance; set by `run_to_rest` from its rest tolerance, zero otherwise.
-    pub(super) velocity_accuracy: f64,
     pub(super) ws: Workspace,
 }
 
@@ -228,6 +225,21 @@ impl Simulation {
 
     /// Advances one time step. On divergence the state stays at the last good step.
     pub fn step(&mut self) -> Result<StepStats, SimError> {
+        self.step_to(0.0)
+    }
+
+    /// One step whose implicit solve may also stop at an RMS velocity error of
+    /// `velocity_accuracy` (m/s). A failed step also drops the solver's warm start, so a
+    /// retry starts as cleanly as the last good step did.
+    fn step_to(&mut self, velocity_accuracy: f64) -> Result<StepStats, SimError> {
+        let result = self.try_step(velocity_accuracy);
+        if result.is_err() {
+            self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
+        }
+        result
+    }
+
+    fn try_step(&mut self, velocity_accuracy: f64) -> Result<StepStats, SimError> {
         let h = self.settings.time_step;
         self.ws.filter.clear();
         for pin in &self.pins {
@@ -256,7 +268,7 @@ impl Simulation {
         // which allocates a block every 63 jobs; run the whole step as one job inside the
         // pool instead, so the many parallel loops of a step use a worker's own queue.
         let integrate = |sim: &mut Self| match sim.settings.integrator {
-            Integrator::ImplicitEuler => sim.implicit_step(h),
+            Integrator::ImplicitEuler => sim.implicit_step(h, velocity_accuracy),
             Integrator::ExplicitEuler => Ok(sim.explicit_step(h, false)),
             Integrator::SymplecticEuler => Ok(sim.explicit_step(h, true)),
         };
@@ -342,21 +354,12 @@ impl Simulation {
         criteria: &RestCriteria,
         mut observe: impl FnMut(&Simulation, &StepStats),
     ) -> Result<RestOutcome, SimError> {
-        self.velocity_accuracy = 0.01 * criteria.tolerance / self.settings.time_step;
-        let outcome = self.rest_loop(criteria, &mut observe);
-        self.velocity_accuracy = 0.0;
-        outcome
-    }
-
-    fn rest_loop(
-        &mut self,
-        criteria: &RestCriteria,
-        observe: &mut impl FnMut(&Simulation, &StepStats),
-    ) -> Result<RestOutcome, SimError> {
+        criteria.validate()?;
+        let accuracy = 0.01 * criteria.tolerance / self.settings.time_step;
         let mut calm = 0u32;
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
-            last = self.step()?;
+            last = self.step_to(accuracy)?;
             observe(self, &last);
             calm = if last.max_displacement < criteria.tolerance {
                 calm + 1
