@@ -1,6 +1,9 @@
 //! Static equilibria against analytic references.
 
-use cloth::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder, SolverSettings, StopReason, Vec3};
+use cloth::{
+    Fabric, GridBuilder, Pin, RestCriteria, RestOutcome, Simulation, SimulationBuilder, SolverSettings,
+    StopReason, Vec3,
+};
 
 /// A vertical strip pinned along its top edge: the strain at the top is rho g L / k.
 #[test]
@@ -45,6 +48,19 @@ fn hanging_strip_top_strain_is_rho_g_l_over_k() {
     );
 }
 
+/// Runs a cantilever to a tight rest (1 nm per step) and checks it got there.
+fn settle(sim: &mut Simulation) -> RestOutcome {
+    let out = sim
+        .run_to_rest(&RestCriteria {
+            tolerance: 1e-9,
+            consecutive_steps: 20,
+            max_steps: 5000,
+        })
+        .unwrap();
+    assert_eq!(out.reason, StopReason::AtRest, "{out:?}");
+    out
+}
+
 /// A strip clamped at one end bends under its own weight. For a small load
 /// (Gamma = q L^3 / B = 0.29) the tip drop is the Euler-Bernoulli q L^4 / (8 B). The
 /// discrete clamp and free end leave an error of first order in the cell size, so the
@@ -65,14 +81,7 @@ fn clamped_strip_tip_drop_converges_to_beam_theory() {
         let fabric = Fabric::isotropic_linear(rho, 1e6, 1e4, b);
         let pins = (0..ny).flat_map(|j| [Pin::fixed(g.index(0, j)), Pin::fixed(g.index(1, j))]);
         let mut sim = SimulationBuilder::new(mesh, fabric).pins(pins).build().unwrap();
-        let out = sim
-            .run_to_rest(&RestCriteria {
-                tolerance: 1e-9,
-                consecutive_steps: 20,
-                max_steps: 5000,
-            })
-            .unwrap();
-        assert_eq!(out.reason, StopReason::AtRest, "{out:?}");
+        let out = settle(&mut sim);
         let drop = -(0..ny)
             .map(|j| sim.positions()[g.index(nx - 1, j)].z)
             .sum::<f64>()
@@ -139,14 +148,7 @@ fn anisotropic_cells_and_rigidity_bend_at_their_own_rigidity() {
                 .collect()
         };
         let mut sim = SimulationBuilder::new(mesh, fabric).pins(pins).build().unwrap();
-        let out = sim
-            .run_to_rest(&RestCriteria {
-                tolerance: 1e-9,
-                consecutive_steps: 20,
-                max_steps: 5000,
-            })
-            .unwrap();
-        assert_eq!(out.reason, StopReason::AtRest);
+        settle(&mut sim);
         let tip: Vec<f64> = if along_warp {
             (0..g.ny)
                 .map(|j| -sim.positions()[g.index(g.nx - 1, j)].z)

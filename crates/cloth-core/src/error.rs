@@ -48,6 +48,26 @@ pub enum ParamError {
     PinOutOfRange { particle: usize, count: usize },
 }
 
+impl ParamError {
+    /// `Ok` when `ok`, otherwise the out-of-range error for `name`.
+    pub(crate) fn check(
+        ok: bool,
+        name: &'static str,
+        value: f64,
+        expected: &'static str,
+    ) -> Result<(), Self> {
+        if ok {
+            Ok(())
+        } else {
+            Err(Self::OutOfRange {
+                name,
+                value,
+                expected,
+            })
+        }
+    }
+}
+
 /// Why a run stopped with an error. The simulation keeps the last good state.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SimError {

@@ -80,7 +80,6 @@ fn pcg_agrees_with_sparse_cholesky() {
             let settings = PcgSettings {
                 rel_tolerance: 1e-12,
                 max_iterations: 20 * 3 * n,
-                ..Default::default()
             };
             let out = Pcg::new(n)
                 .solve(&a, &b, &mut x, &settings, 0.0, parallel)
@@ -106,7 +105,6 @@ fn pcg_reports_an_iteration_limit_without_failing() {
             &PcgSettings {
                 rel_tolerance: 1e-14,
                 max_iterations: 3,
-                ..Default::default()
             },
             0.0,
             false,
@@ -189,7 +187,6 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
             &PcgSettings {
                 rel_tolerance: 1e-13,
                 max_iterations: 5000,
-                ..Default::default()
             },
             0.0,
             true,

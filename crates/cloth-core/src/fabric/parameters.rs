@@ -81,19 +81,12 @@ impl Fabric {
     pub fn validate(&self) -> Result<(), ParamError> {
         let check = |name: &'static str, value: f64, positive: bool| {
             let ok = value.is_finite() && if positive { value > 0.0 } else { value >= 0.0 };
-            if ok {
-                Ok(())
+            let expected = if positive {
+                "a positive finite number"
             } else {
-                Err(ParamError::OutOfRange {
-                    name,
-                    value,
-                    expected: if positive {
-                        "a positive finite number"
-                    } else {
-                        "a finite number >= 0"
-                    },
-                })
-            }
+                "a finite number >= 0"
+            };
+            ParamError::check(ok, name, value, expected)
         };
         check("area_density", self.area_density, true)?;
         self.warp.validate("warp")?;

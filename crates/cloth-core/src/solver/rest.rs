@@ -26,27 +26,20 @@ impl Default for RestCriteria {
 
 impl RestCriteria {
     pub fn validate(&self) -> Result<(), ParamError> {
-        let bad = |name, value, expected| {
-            Err(ParamError::OutOfRange {
-                name,
-                value,
-                expected,
-            })
-        };
-        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return bad(
-                "rest.tolerance",
-                self.tolerance,
-                "a positive finite distance per step in metres",
-            );
-        }
-        if self.consecutive_steps == 0 {
-            return bad("rest.consecutive_steps", 0.0, "at least one step");
-        }
-        if self.max_steps == 0 {
-            return bad("rest.max_steps", 0.0, "at least one step");
-        }
-        Ok(())
+        let t = self.tolerance;
+        ParamError::check(
+            t > 0.0 && t.is_finite(),
+            "rest.tolerance",
+            t,
+            "a positive finite distance per step in metres",
+        )?;
+        ParamError::check(
+            self.consecutive_steps > 0,
+            "rest.consecutive_steps",
+            0.0,
+            "at least one step",
+        )?;
+        ParamError::check(self.max_steps > 0, "rest.max_steps", 0.0, "at least one step")
     }
 }
 

@@ -54,43 +54,33 @@ impl Default for SolverSettings {
 
 impl SolverSettings {
     pub fn validate(&self) -> Result<(), ParamError> {
-        let bad = |name, value, expected| {
-            Err(ParamError::OutOfRange {
-                name,
-                value,
-                expected,
-            })
-        };
-        if !(self.time_step > 0.0 && self.time_step.is_finite()) {
-            return bad(
-                "time_step",
-                self.time_step,
-                "a positive finite time step in seconds",
-            );
-        }
-        if !(self.pcg.rel_tolerance > 0.0 && self.pcg.rel_tolerance < 1.0) {
-            return bad(
-                "pcg.rel_tolerance",
-                self.pcg.rel_tolerance,
-                "a relative tolerance in (0, 1)",
-            );
-        }
-        if self.pcg.max_iterations == 0 {
-            return bad("pcg.max_iterations", 0.0, "at least one iteration");
-        }
-        if !(self.max_speed > 0.0) {
-            return bad("max_speed", self.max_speed, "a positive speed limit in m/s");
-        }
-        if !(self.max_kinetic_energy > 0.0) {
-            return bad(
-                "max_kinetic_energy",
-                self.max_kinetic_energy,
-                "a positive energy limit in J",
-            );
-        }
-        for (name, v) in [("gravity", &self.gravity), ("wind", &self.wind)] {
-            if let Some(c) = v.iter().find(|c| !c.is_finite()) {
-                return bad(name, *c, "finite components");
+        let h = self.time_step;
+        ParamError::check(
+            h > 0.0 && h.is_finite(),
+            "time_step",
+            h,
+            "a positive finite time step in seconds",
+        )?;
+        let tol = self.pcg.rel_tolerance;
+        ParamError::check(
+            tol > 0.0 && tol < 1.0,
+            "pcg.rel_tolerance",
+            tol,
+            "a relative tolerance in (0, 1)",
+        )?;
+        ParamError::check(
+            self.pcg.max_iterations > 0,
+            "pcg.max_iterations",
+            0.0,
+            "at least one iteration",
+        )?;
+        let v = self.max_speed;
+        ParamError::check(v > 0.0, "max_speed", v, "a positive speed limit in m/s")?;
+        let e = self.max_kinetic_energy;
+        ParamError::check(e > 0.0, "max_kinetic_energy", e, "a positive energy limit in J")?;
+        for (name, vector) in [("gravity", &self.gravity), ("wind", &self.wind)] {
+            for c in vector.iter() {
+                ParamError::check(c.is_finite(), name, *c, "finite components")?;
             }
         }
         Ok(())
