@@ -7,7 +7,7 @@
 //! so clamping a compressive `T` to zero is the exact PSD projection.
 
 use super::{HessianMode, Local, TriangleRest};
-use crate::fabric::{TensileLaw, TensileResponse};
+use crate::fabric::{Fabric, TensileLaw, TensileResponse};
 use crate::{Mat3, Vec3};
 
 /// Tension response of one thread direction, with its compression stiffness.
@@ -17,7 +17,21 @@ pub struct ThreadLaw<'a> {
     pub compression: f64,
 }
 
-impl ThreadLaw<'_> {
+impl<'a> ThreadLaw<'a> {
+    /// The warp and the weft laws of a fabric.
+    pub fn of(fabric: &'a Fabric) -> [Self; 2] {
+        [
+            Self {
+                tension: &fabric.warp,
+                compression: fabric.compression_warp,
+            },
+            Self {
+                tension: &fabric.weft,
+                compression: fabric.compression_weft,
+            },
+        ]
+    }
+
     #[inline]
     pub fn response(&self, strain: f64) -> TensileResponse {
         if strain >= 0.0 {

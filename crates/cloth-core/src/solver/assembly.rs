@@ -207,14 +207,7 @@ impl ForceModel {
             .as_mut()
             .map(|s| Shared(s.matrix.blocks_mut().as_mut_ptr()));
         let fabric = &self.fabric;
-        let warp = ThreadLaw {
-            tension: &fabric.warp,
-            compression: fabric.compression_warp,
-        };
-        let weft = ThreadLaw {
-            tension: &fabric.weft,
-            compression: fabric.compression_weft,
-        };
+        let [warp, weft] = ThreadLaw::of(fabric);
 
         let tri_kernel = |e: &TriElement, energy: &mut f64| {
             let xe = e.v.map(|i| x[i as usize]);
@@ -444,14 +437,7 @@ mod tests {
         // The same sum, element by element, in dense form.
         let mut dense = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
         let fab = model.fabric().clone();
-        let warp = ThreadLaw {
-            tension: &fab.warp,
-            compression: fab.compression_warp,
-        };
-        let weft = ThreadLaw {
-            tension: &fab.weft,
-            compression: fab.compression_weft,
-        };
+        let [warp, weft] = ThreadLaw::of(&fab);
         let mut add = |ids: &[usize], h: &nalgebra::DMatrix<f64>| {
             for (a, &i) in ids.iter().enumerate() {
                 for (b, &j) in ids.iter().enumerate() {

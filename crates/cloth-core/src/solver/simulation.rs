@@ -124,6 +124,7 @@ impl SimulationBuilder {
                 v_new: zeros,
                 filter: Filter::new(n, pin_count),
                 pcg: Pcg::new(n),
+                pin_targets: Vec::with_capacity(pin_count),
             },
         })
     }
@@ -143,6 +144,8 @@ pub(super) struct Workspace {
     pub v_new: Vec<Vec3>,
     pub filter: Filter,
     pub pcg: Pcg,
+    /// Where each pin wants its particle at the end of the step (its path is asked once).
+    pub pin_targets: Vec<Vec3>,
 }
 
 /// A cloth simulation: the mesh, its fabric, the state and the integrator.
@@ -242,8 +245,10 @@ impl Simulation {
     fn try_step(&mut self, velocity_accuracy: f64) -> Result<StepStats, SimError> {
         let h = self.settings.time_step;
         self.ws.filter.clear();
+        self.ws.pin_targets.clear();
         for pin in &self.pins {
             let target = pin.target(self.time + h);
+            self.ws.pin_targets.push(target);
             if !target.iter().all(|c| c.is_finite()) {
                 return Err(SimError::InvalidPin {
                     step: self.steps + 1,
@@ -283,8 +288,8 @@ impl Simulation {
             reason,
         })?;
         // Land pinned particles on their targets exactly, not to rounding.
-        for pin in &self.pins {
-            self.ws.x_new[pin.particle] = pin.target(self.time + h);
+        for (pin, target) in self.pins.iter().zip(&self.ws.pin_targets) {
+            self.ws.x_new[pin.particle] = *target;
         }
 
         let masses = self.model.masses();
