@@ -1,1 +1,7 @@
+//! The cloth engine: cloth-core's model and solver, cloth-collide's bodies, and ready-made
+//! scenes.
+
+pub use cloth_collide as collide;
 pub use cloth_core::*;
+
+pub mod scenes;

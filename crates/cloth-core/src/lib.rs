@@ -10,6 +10,7 @@
 // read better than iterator chains in the small dense element algebra.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
 
+pub mod contact;
 pub mod energy;
 pub mod error;
 pub mod fabric;
@@ -18,6 +19,7 @@ pub mod mesh;
 pub mod metrics;
 pub mod solver;
 
+pub use contact::{Collider, ContactMode, Proximity, SharpFeature, SurfacePoint};
 pub use error::{DivergenceReason, MeshError, ParamError, SimError};
 pub use fabric::{BendingLaw, BendingRigidity, Fabric, TensileLaw};
 pub use mesh::{ClothMesh, GridBuilder, GridDiagonals};

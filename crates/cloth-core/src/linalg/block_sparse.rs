@@ -93,6 +93,17 @@ impl BlockSparse {
 
     /// `y = A x`, in parallel over rows when `parallel`.
     pub fn mul(&self, x: &[Vec3], y: &mut [Vec3], parallel: bool) {
+        self.mul_then(x, y, parallel, |_, s| s);
+    }
+
+    /// `y_r = f(r, (A x)_r)`: a product whose rows are post-processed in the same pass.
+    pub fn mul_then(
+        &self,
+        x: &[Vec3],
+        y: &mut [Vec3],
+        parallel: bool,
+        f: impl Fn(usize, Vec3) -> Vec3 + Sync,
+    ) {
         debug_assert_eq!(x.len(), self.n());
         debug_assert_eq!(y.len(), self.n());
         let run = |(task, out): (usize, &mut [Vec3])| {
@@ -102,7 +113,7 @@ impl BlockSparse {
                 for slot in self.row(first + k) {
                     s += self.blocks[slot] * x[self.cols[slot] as usize];
                 }
-                *yr = s;
+                *yr = f(first + k, s);
             }
         };
         if parallel {

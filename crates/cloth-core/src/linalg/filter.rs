@@ -2,8 +2,10 @@
 //! (2003): with `S` projecting out each constrained particle's constrained directions and
 //! `z` the prescribed velocity changes in them, the step solves
 //! `(S A S + I - S) y = S (b - A z)` and takes `dv = y + z`: a standard SPD system.
+//! The matrix is never filtered in place: PCG applies the filter inside its operator, so
+//! the same assembled matrix serves a re-solve with fewer constraints and the reaction
+//! forces of the constrained rows.
 
-use super::BlockSparse;
 use crate::{Mat3, Vec3};
 
 /// Which directions of a particle's velocity a constraint prescribes.
@@ -128,22 +130,22 @@ impl Filter {
         }
     }
 
-    /// `A <- S A S + I - S` in place, touching only the constrained rows and columns.
-    pub fn filter_matrix(&self, a: &mut BlockSparse) {
-        for (r, s, _) in &self.entries {
-            for slot in a.row(*r) {
-                a.blocks_mut()[slot] = s * a.blocks()[slot];
-            }
+    /// `S_r y`: one row of a vector projected (unchanged for a free particle).
+    pub fn project_row(&self, r: usize, y: Vec3) -> Vec3 {
+        match self.slot[r] {
+            u32::MAX => y,
+            k => self.entries[k as usize].1 * y,
         }
-        for (c, s, _) in &self.entries {
-            for slot in a.row(*c) {
-                let t = a.transpose_slot(slot);
-                a.blocks_mut()[t] = a.blocks()[t] * s;
+    }
+
+    /// Diagonal block `r` of the filtered matrix `S A S + I - S`, given `A`'s block `d`.
+    pub fn filtered_diagonal(&self, r: usize, d: &Mat3) -> Mat3 {
+        match self.slot[r] {
+            u32::MAX => *d,
+            k => {
+                let s = &self.entries[k as usize].1;
+                s * d * s + (Mat3::identity() - s)
             }
-        }
-        for (r, s, _) in &self.entries {
-            let d = a.diag_slot(*r);
-            a.blocks_mut()[d] += Mat3::identity() - s;
         }
     }
 

@@ -1,7 +1,8 @@
 //! Block-Jacobi preconditioned conjugate gradients through faer's matrix-free solver,
-//! with our block-sparse operator. All scratch is allocated once in [`Pcg::new`].
+//! with our block-sparse operator and the constraint filter inside it. All scratch is
+//! allocated once in [`Pcg::new`].
 
-use super::BlockSparse;
+use super::{BlockSparse, Filter};
 use crate::{Mat3, Vec3};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::matrix_free::conjugate_gradient::{
@@ -38,9 +39,14 @@ pub struct PcgOutcome {
     pub converged: bool,
 }
 
+/// `S A S + I - S` on vectors in the range of `S`, where it is `S A`: every CG vector stays
+/// there (the right-hand side and the initial guess are projected, and the block-Jacobi
+/// preconditioner keeps the split), so one product and a projection of the constrained
+/// rows in the same pass is the whole filtered operator.
 #[derive(Debug)]
 struct Operator<'a> {
     a: &'a BlockSparse,
+    filter: &'a Filter,
     parallel: bool,
 }
 
@@ -73,7 +79,11 @@ impl LinOp<f64> for Operator<'_> {
         3 * self.a.n()
     }
     fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
-        self.a.mul(blocks(rhs), blocks_mut(out), self.parallel);
+        let filter = self.filter;
+        self.a
+            .mul_then(blocks(rhs), blocks_mut(out), self.parallel, |r, y| {
+                filter.project_row(r, y)
+            });
     }
     fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
         self.apply(out, rhs, par, stack);
@@ -124,10 +134,12 @@ impl Pcg {
     pub fn new(n: usize) -> Self {
         let inv_diag = vec![Mat3::identity(); n];
         let a = BlockSparse::from_pairs(n.max(1), []);
+        let filter = Filter::new(n.max(1), 0);
         let req = conjugate_gradient_scratch(
             BlockJacobi { inv: &inv_diag },
             Operator {
                 a: &a,
+                filter: &filter,
                 parallel: false,
             },
             1,
@@ -142,13 +154,16 @@ impl Pcg {
         }
     }
 
-    /// Solves `A x = b` for SPD `A`, starting from the `x` given, to `settings` or to an
-    /// absolute residual `abs_tolerance`, whichever is looser. The operator runs in
-    /// parallel when `parallel`; faer's own vector work stays sequential so the result does
-    /// not depend on the number of threads.
+    /// Solves the filtered system `(S A S + I - S) x = b` for SPD `A` (see [`Filter`]),
+    /// starting from the `x` given, to `settings` or to an absolute residual
+    /// `abs_tolerance`, whichever is looser. `b` and `x` must be projected (`S b = b`,
+    /// `S x = x`). The operator runs in parallel when `parallel`; faer's own vector work
+    /// stays sequential so the result does not depend on the number of threads.
+    #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
         a: &BlockSparse,
+        filter: &Filter,
         b: &[Vec3],
         x: &mut [Vec3],
         settings: &PcgSettings,
@@ -157,7 +172,7 @@ impl Pcg {
     ) -> Result<PcgOutcome, String> {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
         for (r, inv) in self.inv_diag.iter_mut().enumerate() {
-            let d = a.blocks()[a.diag_slot(r)];
+            let d = filter.filtered_diagonal(r, &a.blocks()[a.diag_slot(r)]);
             *inv = d
                 .cholesky()
                 .map(|c| c.inverse())
@@ -176,7 +191,7 @@ impl Pcg {
         let result = conjugate_gradient(
             self.sol.as_mut(),
             BlockJacobi { inv: &self.inv_diag },
-            Operator { a, parallel },
+            Operator { a, filter, parallel },
             self.rhs.as_ref(),
             params,
             |_| {},
@@ -192,7 +207,7 @@ impl Pcg {
             // faer 0.24 reports the initial residual here, so measure the final one.
             Err(CgError::NoConvergence { .. }) => {
                 let x = blocks(self.sol.as_ref());
-                a.mul(x, &mut self.residual, parallel);
+                a.mul_then(x, &mut self.residual, parallel, |r, y| filter.project_row(r, y));
                 let (mut r2, mut b2) = (0.0, 0.0);
                 for (ax, bk) in self.residual.iter().zip(b) {
                     r2 += (bk - ax).norm_squared();

@@ -56,57 +56,83 @@ impl Simulation {
         )
     }
 
-    /// The system matrix as the last implicit step left it (filtered).
+    /// The system matrix of the last implicit step (unfiltered).
     pub fn system_matrix(&self) -> &BlockSparse {
         &self.matrix
     }
 
-    /// Writes the next state into the workspace.
+    /// Writes the next state into the workspace. Contacts whose body would have to pull
+    /// are let go and the step solved again without them, up to [`RELEASE_PASSES`] times,
+    /// so a contact never holds the cloth to the body.
     pub(super) fn implicit_step(&mut self, h: f64, velocity_accuracy: f64) -> Result<StepStats, String> {
         let start = Instant::now();
         let potential = self.assemble_system();
         let assembly_seconds = start.elapsed().as_secs_f64();
 
         let start = Instant::now();
-        let (s, ws) = (&self.settings, &mut self.ws);
         // b = h F0 - h^2 K v0 (F0 already holds the damping force -beta K v0).
-        for ((b, f), kv) in ws.rhs.iter_mut().zip(&ws.force).zip(&ws.hv) {
+        for ((b, f), kv) in self.ws.b.iter_mut().zip(&self.ws.force).zip(&self.ws.hv) {
             *b = h * f - (h * h) * kv;
         }
-        ws.filter.velocity_change(&self.v, &mut ws.z);
-        if !ws.filter.is_empty() {
-            self.matrix.mul(&ws.z, &mut ws.az, s.parallel);
-            for (b, az) in ws.rhs.iter_mut().zip(&ws.az) {
-                *b -= az;
-            }
-            ws.filter.project(&mut ws.rhs);
-            ws.filter.filter_matrix(&mut self.matrix);
+        if let Some(contacts) = &self.contacts {
+            // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
+            contacts.particles.add_friction_force(&self.v, &mut self.ws.b, h);
+            contacts.particles.add_friction_jacobian(&mut self.matrix, h);
         }
-        ws.filter.project(&mut ws.y);
         // A >= M, so a residual of v |m| leaves an RMS velocity error of about v.
         let abs_tolerance = velocity_accuracy * self.model.mass_norm();
-        let outcome = ws.pcg.solve(
-            &self.matrix,
-            &ws.rhs,
-            &mut ws.y,
-            &s.pcg,
-            abs_tolerance,
-            s.parallel,
-        )?;
-        ws.filter.project(&mut ws.y);
+        let mut stats = StepStats {
+            cg_converged: true,
+            assembly_seconds,
+            potential_energy: potential,
+            ..Default::default()
+        };
+        for pass in 0..=RELEASE_PASSES {
+            let (s, ws) = (&self.settings, &mut self.ws);
+            ws.filter.velocity_change(&self.v, &mut ws.z);
+            ws.rhs.copy_from_slice(&ws.b);
+            if !ws.filter.is_empty() {
+                self.matrix.mul(&ws.z, &mut ws.az, s.parallel);
+                for (r, az) in ws.rhs.iter_mut().zip(&ws.az) {
+                    *r -= az;
+                }
+                ws.filter.project(&mut ws.rhs);
+            }
+            ws.filter.project(&mut ws.y);
+            let outcome = ws.pcg.solve(
+                &self.matrix,
+                &ws.filter,
+                &ws.rhs,
+                &mut ws.y,
+                &s.pcg,
+                abs_tolerance,
+                s.parallel,
+            )?;
+            ws.filter.project(&mut ws.y);
+            stats.cg_iterations += outcome.iterations;
+            stats.cg_residual = outcome.rel_residual;
+            stats.cg_converged &= outcome.converged;
+            let Some(contacts) = &mut self.contacts else {
+                break;
+            };
+            contacts
+                .particles
+                .implicit_reactions(&self.matrix, &ws.b, |j| ws.y[j] + ws.z[j], h);
+            if pass == RELEASE_PASSES || contacts.particles.release_pulling() == 0 {
+                break;
+            }
+            self.refill_filter(h)?;
+        }
+        let ws = &mut self.ws;
         for i in 0..self.x.len() {
             let v: Vec3 = self.v[i] + ws.y[i] + ws.z[i];
             ws.v_new[i] = v;
             ws.x_new[i] = self.x[i] + h * v;
         }
-        Ok(StepStats {
-            cg_iterations: outcome.iterations,
-            cg_residual: outcome.rel_residual,
-            cg_converged: outcome.converged,
-            assembly_seconds,
-            solve_seconds: start.elapsed().as_secs_f64(),
-            potential_energy: potential,
-            ..Default::default()
-        })
+        stats.solve_seconds = start.elapsed().as_secs_f64();
+        Ok(stats)
     }
 }
+
+/// Re-solves a step may take after letting go of pulling contacts.
+pub const RELEASE_PASSES: usize = 2;

@@ -2,11 +2,14 @@
 
 use super::assembly::ForceModel;
 use super::{Integrator, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason};
+use crate::contact::{Collider, Contacts};
 use crate::error::{DivergenceReason, ParamError, SimError};
 use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
 use crate::mesh::ClothMesh;
 use crate::Vec3;
+use std::sync::Arc;
+use std::time::Instant;
 
 /// Sets up a [`Simulation`].
 #[derive(Debug, Clone)]
@@ -16,6 +19,7 @@ pub struct SimulationBuilder {
     settings: SolverSettings,
     pins: Vec<Pin>,
     velocities: Option<Vec<Vec3>>,
+    collider: Option<Arc<dyn Collider>>,
 }
 
 impl SimulationBuilder {
@@ -26,6 +30,7 @@ impl SimulationBuilder {
             settings: SolverSettings::default(),
             pins: Vec::new(),
             velocities: None,
+            collider: None,
         }
     }
     pub fn settings(mut self, settings: SolverSettings) -> Self {
@@ -46,6 +51,11 @@ impl SimulationBuilder {
     }
     pub fn pins(mut self, pins: impl IntoIterator<Item = Pin>) -> Self {
         self.pins.extend(pins);
+        self
+    }
+    /// The rigid bodies the cloth collides with.
+    pub fn collider(mut self, collider: Arc<dyn Collider>) -> Self {
+        self.collider = Some(collider);
         self
     }
     /// Initial velocities (zero by default).
@@ -100,8 +110,24 @@ impl SimulationBuilder {
                 expected: "finite components",
             });
         }
+        let collider_thickness = self.collider.as_ref().map(|c| c.max_thickness());
+        if let Some(d) = collider_thickness {
+            ParamError::check(
+                d > 0.0 && d.is_finite(),
+                "contact thickness",
+                d,
+                "a positive thickness in m",
+            )?;
+        }
         let (model, matrix) = ForceModel::new(&self.mesh, self.fabric);
+        let contacts = self.collider.map(|collider| {
+            let mut c = Contacts::new(collider, model.masses(), &pinned);
+            c.particles
+                .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
+            c
+        });
         let pin_count = pins.len();
+        let filter_capacity = if contacts.is_some() { n } else { pin_count };
         let zeros = vec![Vec3::zeros(); n];
         Ok(Simulation {
             mesh: self.mesh,
@@ -109,6 +135,8 @@ impl SimulationBuilder {
             matrix,
             settings: self.settings,
             pins,
+            pinned,
+            contacts,
             x,
             v,
             time: 0.0,
@@ -116,13 +144,14 @@ impl SimulationBuilder {
             ws: Workspace {
                 force: zeros.clone(),
                 hv: zeros.clone(),
+                b: zeros.clone(),
                 rhs: zeros.clone(),
                 z: zeros.clone(),
                 az: zeros.clone(),
                 y: zeros.clone(),
                 x_new: zeros.clone(),
                 v_new: zeros,
-                filter: Filter::new(n, pin_count),
+                filter: Filter::new(n, filter_capacity),
                 pcg: Pcg::new(n),
                 pin_targets: Vec::with_capacity(pin_count),
             },
@@ -135,6 +164,8 @@ impl SimulationBuilder {
 pub(super) struct Workspace {
     pub force: Vec<Vec3>,
     pub hv: Vec<Vec3>,
+    /// Right-hand side `h F0 - h^2 K v0` of the unfiltered system.
+    pub b: Vec<Vec3>,
     pub rhs: Vec<Vec3>,
     pub z: Vec<Vec3>,
     pub az: Vec<Vec3>,
@@ -156,6 +187,8 @@ pub struct Simulation {
     pub(super) matrix: BlockSparse,
     pub(super) settings: SolverSettings,
     pub(super) pins: Vec<Pin>,
+    pub(super) pinned: Vec<bool>,
+    pub(super) contacts: Option<Contacts>,
     pub(super) x: Vec<Vec3>,
     pub(super) v: Vec<Vec3>,
     pub(super) time: f64,
@@ -238,44 +271,47 @@ impl Simulation {
         let result = self.try_step(velocity_accuracy);
         if result.is_err() {
             self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
+            // The contact passes may have looked at the rejected state.
+            if let Some(c) = &mut self.contacts {
+                c.particles
+                    .refresh(c.collider.as_ref(), self.time, &self.x, self.settings.parallel);
+            }
         }
         result
     }
 
     fn try_step(&mut self, velocity_accuracy: f64) -> Result<StepStats, SimError> {
         let h = self.settings.time_step;
-        self.ws.filter.clear();
         self.ws.pin_targets.clear();
         for pin in &self.pins {
             let target = pin.target(self.time + h);
-            self.ws.pin_targets.push(target);
             if !target.iter().all(|c| c.is_finite()) {
                 return Err(SimError::InvalidPin {
                     step: self.steps + 1,
                     particle: pin.particle,
                 });
             }
-            let constraint = Constraint {
-                particle: pin.particle,
-                kind: ConstraintKind::Fixed,
-                velocity: (target - self.x[pin.particle]) / h,
-            };
-            self.ws
-                .filter
-                .push(&constraint)
-                .map_err(|reason| SimError::Solver {
-                    step: self.steps + 1,
-                    last_good: self.steps,
-                    reason,
-                })?;
+            self.ws.pin_targets.push(target);
         }
+        if let Some(contacts) = &mut self.contacts {
+            contacts.particles.constrain(h, &self.v, &self.pinned);
+        }
+        self.refill_filter(h).map_err(|reason| SimError::Solver {
+            step: self.steps + 1,
+            last_good: self.steps,
+            reason,
+        })?;
         // Parallel work started from outside rayon's pool goes through its global injector,
         // which allocates a block every 63 jobs; run the whole step as one job inside the
         // pool instead, so the many parallel loops of a step use a worker's own queue.
-        let integrate = |sim: &mut Self| match sim.settings.integrator {
-            Integrator::ImplicitEuler => sim.implicit_step(h, velocity_accuracy),
-            Integrator::ExplicitEuler => Ok(sim.explicit_step(h, false)),
-            Integrator::SymplecticEuler => Ok(sim.explicit_step(h, true)),
+        let integrate = |sim: &mut Self| {
+            let mut stats = match sim.settings.integrator {
+                Integrator::ImplicitEuler => sim.implicit_step(h, velocity_accuracy)?,
+                Integrator::ExplicitEuler => sim.explicit_step(h, false)?,
+                Integrator::SymplecticEuler => sim.explicit_step(h, true)?,
+            };
+            sim.finish_contacts(h, &mut stats);
+            Ok(stats)
         };
         let result = if self.settings.parallel && rayon::current_thread_index().is_none() {
             rayon::scope(|_| integrate(self))
@@ -383,6 +419,56 @@ impl Simulation {
             reason: StopReason::StepLimit,
             steps: criteria.max_steps,
             last,
+        })
+    }
+}
+
+impl Simulation {
+    /// The step's constraints: the pins, then the active contacts (a pin wins).
+    pub(super) fn refill_filter(&mut self, h: f64) -> Result<(), String> {
+        let filter = &mut self.ws.filter;
+        filter.clear();
+        for (pin, target) in self.pins.iter().zip(&self.ws.pin_targets) {
+            filter.push(&Constraint {
+                particle: pin.particle,
+                kind: ConstraintKind::Fixed,
+                velocity: (target - self.x[pin.particle]) / h,
+            })?;
+        }
+        if let Some(contacts) = &self.contacts {
+            contacts.particles.push_constraints(filter)?;
+        }
+        Ok(())
+    }
+
+    /// The end-of-step contact passes, when there are bodies.
+    fn finish_contacts(&mut self, h: f64, stats: &mut StepStats) {
+        let Some(contacts) = &mut self.contacts else {
+            return;
+        };
+        let start = Instant::now();
+        stats.contacts = contacts.particles.active.len();
+        let counts = contacts.finish_step(
+            self.time,
+            h,
+            self.mesh.triangles(),
+            &self.x,
+            &mut self.ws.x_new,
+            &mut self.ws.v_new,
+            &self.pinned,
+            self.settings.parallel,
+        );
+        stats.contact_corrections = counts.corrected;
+        stats.crossings = counts.crossings;
+        stats.feature_corrections = counts.features;
+        stats.contact_seconds = start.elapsed().as_secs_f64();
+    }
+
+    /// The particles' contact modes in the last step (all `Free` without bodies).
+    pub fn contact_modes(&self) -> impl Iterator<Item = crate::contact::ContactMode> + '_ {
+        (0..self.x.len()).map(|i| match &self.contacts {
+            Some(c) => c.particles.state[i].mode,
+            None => crate::contact::ContactMode::Free,
         })
     }
 }

@@ -1,0 +1,246 @@
+//! A rigid body: a closed surface, its parry mesh and BVH, how it moves, and its contact
+//! properties.
+
+use crate::convert::{from_parry, to_parry};
+use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
+use crate::Motion;
+use cloth_core::Vec3;
+use nalgebra::{Isometry3, Point3};
+use parry3d_f64::query::{PointQuery, Ray, RayCast};
+use parry3d_f64::shape::{TriMesh, TriMeshFlags};
+
+/// Default contact thickness, m: a few millimetres, about a fabric's thickness.
+pub const DEFAULT_THICKNESS: f64 = 0.003;
+/// Default Coulomb coefficient of cloth on a body.
+pub const DEFAULT_FRICTION: f64 = 0.5;
+/// Default fold angle above which an edge counts as sharp, rad (30 degrees).
+pub const DEFAULT_SHARP_ANGLE: f64 = std::f64::consts::PI / 6.0;
+
+/// A body parameter out of range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("body `{body}`: `{name}` = {value} is invalid: {expected}")]
+pub struct BodyError {
+    pub body: String,
+    pub name: &'static str,
+    pub value: f64,
+    pub expected: &'static str,
+}
+
+/// A rigid body the cloth collides with. Build with [`Body::new`] and the `with_` methods.
+#[derive(Debug, Clone)]
+pub struct Body {
+    name: String,
+    surface: TriSurface,
+    mesh: TriMesh,
+    sharp: Vec<SurfaceFeature>,
+    sharp_angle: f64,
+    motion: Motion,
+    thickness: f64,
+    friction: f64,
+    /// Largest distance of a surface vertex from the local origin.
+    radius: f64,
+}
+
+/// Where a path or a point stands relative to one body, in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BodyPoint {
+    pub point: Vec3,
+    pub normal: Vec3,
+    pub distance: f64,
+    pub crossed: bool,
+    /// Fraction of the path at the entry (1 for a plain proximity).
+    pub entry: f64,
+}
+
+impl Body {
+    /// A static body at the identity pose with the default contact properties.
+    pub fn new(name: impl Into<String>, surface: TriSurface) -> Self {
+        let vertices = surface.vertices().iter().map(to_parry).collect();
+        let indices = surface.triangles().to_vec();
+        // A TriSurface is closed and outward by construction, so ORIENTED's pseudo-normals
+        // give a sound inside/outside answer.
+        let mesh = TriMesh::with_flags(vertices, indices, TriMeshFlags::ORIENTED)
+            .expect("a TriSurface has triangles");
+        let radius = surface.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max);
+        let sharp = surface.sharp_features(DEFAULT_SHARP_ANGLE);
+        Self {
+            name: name.into(),
+            surface,
+            mesh,
+            sharp,
+            sharp_angle: DEFAULT_SHARP_ANGLE,
+            motion: Motion::default(),
+            thickness: DEFAULT_THICKNESS,
+            friction: DEFAULT_FRICTION,
+            radius,
+        }
+    }
+
+    fn check(
+        &self,
+        ok: bool,
+        name: &'static str,
+        value: f64,
+        expected: &'static str,
+    ) -> Result<(), BodyError> {
+        if ok {
+            Ok(())
+        } else {
+            Err(BodyError {
+                body: self.name.clone(),
+                name,
+                value,
+                expected,
+            })
+        }
+    }
+
+    /// Places the body (static).
+    pub fn with_pose(mut self, pose: Isometry3<f64>) -> Result<Self, BodyError> {
+        let finite = pose
+            .translation
+            .vector
+            .iter()
+            .chain(pose.rotation.coords.iter())
+            .all(|c| c.is_finite());
+        self.check(finite, "pose", f64::NAN, "finite translation and rotation")?;
+        self.motion = Motion::Static(pose);
+        Ok(self)
+    }
+    /// Makes the body move.
+    pub fn with_motion(mut self, motion: Motion) -> Self {
+        self.motion = motion;
+        self
+    }
+    /// Contact thickness, m: the cloth is kept this far from the surface.
+    pub fn with_thickness(mut self, thickness: f64) -> Result<Self, BodyError> {
+        self.check(
+            thickness > 0.0 && thickness.is_finite(),
+            "thickness",
+            thickness,
+            "a positive thickness in m (a few millimetres)",
+        )?;
+        self.thickness = thickness;
+        Ok(self)
+    }
+    /// Coulomb friction coefficient; `f64::INFINITY` is the source's no-slip condition.
+    pub fn with_friction(mut self, friction: f64) -> Result<Self, BodyError> {
+        self.check(
+            friction >= 0.0,
+            "friction",
+            friction,
+            "a non-negative coefficient (infinity for no slip)",
+        )?;
+        self.friction = friction;
+        Ok(self)
+    }
+    /// Fold angle (rad) above which an edge counts as sharp and is kept out of cloth
+    /// triangles; pi or more turns the feature pass off for this body.
+    pub fn with_sharp_angle(mut self, angle: f64) -> Result<Self, BodyError> {
+        self.check(angle > 0.0, "sharp_angle", angle, "a positive angle in radians")?;
+        self.sharp_angle = angle;
+        self.sharp = self.surface.sharp_features(angle);
+        Ok(self)
+    }
+
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    pub fn surface(&self) -> &TriSurface {
+        &self.surface
+    }
+    pub fn motion(&self) -> &Motion {
+        &self.motion
+    }
+    pub fn thickness(&self) -> f64 {
+        self.thickness
+    }
+    pub fn friction(&self) -> f64 {
+        self.friction
+    }
+    /// The sharp edges and corners, in the body's own frame.
+    pub fn sharp_features(&self) -> &[SurfaceFeature] {
+        &self.sharp
+    }
+    pub fn pose(&self, t: f64) -> Isometry3<f64> {
+        self.motion.pose(t)
+    }
+    pub(crate) fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The surface in the world frame at time `t`.
+    pub fn surface_at(&self, t: f64) -> TriSurface {
+        self.surface.transformed(&self.pose(t))
+    }
+
+    /// Signed distance of `x` from the surface at time `t` (negative inside), with no
+    /// distance limit.
+    pub fn signed_distance(&self, t: f64, x: &Vec3) -> f64 {
+        let p = self.pose(t).inverse_transform_point(&Point3::from(*x));
+        self.mesh.distance_to_local_point(to_parry(&p.coords), false)
+    }
+
+    /// The first entry into the body along the straight path from `x0` (at `t0`) to `x1`
+    /// (at `t1`), relative to the body; else the nearest surface point to `x1` within
+    /// `max_distance`. The path test is skipped when the path is shorter than
+    /// `min_start_distance`, a lower bound on the distance of `x0`.
+    pub(crate) fn sweep(
+        &self,
+        t0: f64,
+        x0: &Vec3,
+        t1: f64,
+        x1: &Vec3,
+        min_start_distance: f64,
+        max_distance: f64,
+    ) -> Option<BodyPoint> {
+        let pose1 = self.pose(t1);
+        let p1 = pose1.inverse_transform_point(&Point3::from(*x1)).coords;
+        let p0 = if t0 == t1 {
+            pose1.inverse_transform_point(&Point3::from(*x0)).coords
+        } else {
+            self.pose(t0).inverse_transform_point(&Point3::from(*x0)).coords
+        };
+        let path = p1 - p0;
+        let length = path.norm();
+        if length > 0.0 && length >= min_start_distance {
+            let ray = Ray::new(to_parry(&p0), to_parry(&path));
+            if let Some(hit) = self.mesh.cast_local_ray_and_get_normal(&ray, 1.0, false) {
+                let n = from_parry(hit.normal).normalize();
+                // A hit from inside is the particle leaving (it started inside): not an entry.
+                if n.dot(&path) < 0.0 {
+                    let entry = p0 + hit.time_of_impact * path;
+                    return Some(BodyPoint {
+                        point: (pose1 * Point3::from(entry)).coords,
+                        normal: pose1.rotation * n,
+                        distance: n.dot(&(p1 - entry)),
+                        crossed: true,
+                        entry: hit.time_of_impact,
+                    });
+                }
+            }
+        }
+        let proj = self
+            .mesh
+            .project_local_point_with_max_dist(to_parry(&p1), false, max_distance)?;
+        let q = from_parry(proj.point);
+        let offset = p1 - q;
+        let distance = offset.norm();
+        let sign = if proj.is_inside { -1.0 } else { 1.0 };
+        // Far enough from the surface, the direction to the particle is the distance
+        // field's gradient, smooth across edges; on the surface take the face's normal.
+        let normal = if distance > 1e-9 * self.radius.max(1e-3) {
+            sign * offset / distance
+        } else {
+            let face = self.mesh.triangle(proj.subshape);
+            from_parry(face.scaled_normal()).normalize()
+        };
+        Some(BodyPoint {
+            point: (pose1 * Point3::from(q)).coords,
+            normal: pose1.rotation * normal,
+            distance: sign * distance,
+            crossed: false,
+            entry: 1.0,
+        })
+    }
+}

@@ -1,0 +1,18 @@
+//! cloth-collide: rigid polyhedral bodies for the cloth to drape on, on parry.
+//!
+//! A [`Body`] is a closed, outward-oriented [`TriSurface`] (read from OBJ or STL, or
+//! generated) with a pose that may move in time, a contact thickness and a friction
+//! coefficient. [`Bodies`] implements cloth-core's [`cloth_core::Collider`]: bounded BVH
+//! point queries for contact, ray casts along each particle's path against tunnelling, and
+//! the sharp edges and corners that must not poke through cloth triangles.
+
+mod bodies;
+mod body;
+mod convert;
+mod motion;
+pub mod surface;
+
+pub use bodies::Bodies;
+pub use body::{Body, BodyError, DEFAULT_FRICTION, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS};
+pub use motion::Motion;
+pub use surface::{SurfaceError, SurfaceOptions, TriSurface};

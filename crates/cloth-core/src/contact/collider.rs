@@ -1,0 +1,98 @@
+//! The interface through which the solver sees rigid bodies. cloth-core knows nothing of
+//! how a body is stored or queried; cloth-collide implements this on parry.
+
+use crate::Vec3;
+
+/// The body surface nearest a particle at the end of a motion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint {
+    /// Which body (the collider's own numbering).
+    pub body: usize,
+    /// The surface point, world frame, at the end of the motion.
+    pub point: Vec3,
+    /// Outward unit normal there.
+    pub normal: Vec3,
+    /// Signed distance of the particle from the surface, m (negative inside). After a
+    /// crossing it is the depth behind the entry point's tangent plane.
+    pub distance: f64,
+    /// Velocity of the surface at `point`, m/s.
+    pub velocity: Vec3,
+    /// The body's contact thickness, m: particles are kept this far out.
+    pub thickness: f64,
+    /// Coulomb coefficient between the cloth and this body (`f64::INFINITY`: no slip).
+    pub friction: f64,
+    /// The particle's path entered the body during the motion; `point` is the entry.
+    pub crossed: bool,
+}
+
+impl SurfacePoint {
+    /// Distance beyond the contact thickness (negative: inside the contact layer).
+    pub fn gap(&self) -> f64 {
+        self.distance - self.thickness
+    }
+}
+
+/// What a collider knows of one particle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Proximity {
+    /// Within the query reach of a body.
+    Near(SurfacePoint),
+    /// Farther than `gap_lower_bound` beyond every body's contact thickness.
+    Far { gap_lower_bound: f64 },
+}
+
+impl Proximity {
+    /// A lower bound on the distance beyond the contact thickness (exact when near).
+    pub fn gap_lower_bound(&self) -> f64 {
+        match self {
+            Self::Near(p) => p.gap(),
+            Self::Far { gap_lower_bound } => *gap_lower_bound,
+        }
+    }
+}
+
+/// A sharp edge (`a != b`) or corner (`a == b`) of a body, world frame, where the body's
+/// surface is not smooth and can poke between cloth particles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SharpFeature {
+    pub a: Vec3,
+    pub b: Vec3,
+    /// Outward pseudo-normal (unit).
+    pub normal: Vec3,
+    /// Velocity of the feature (at its midpoint), m/s.
+    pub velocity: Vec3,
+    pub thickness: f64,
+}
+
+/// Rigid bodies as the solver needs them. Implementations answer queries only; the solver
+/// decides what is in contact and owns all per-particle state and parallelism.
+pub trait Collider: Send + Sync + std::fmt::Debug {
+    /// Where a particle moving in a straight line (relative to each body) from `x0` at time
+    /// `t0` to `x1` at `t1` ends up relative to the bodies.
+    ///
+    /// If the path enters a body, the answer is the entry point with `crossed` set: the
+    /// continuous test that keeps fast particles from tunnelling. Otherwise it is the
+    /// nearest surface point to `x1` if that lies within the body's thickness plus `reach`,
+    /// or `Far`. `start_gap_lower_bound` is what the solver knows of `x0` (a lower bound on
+    /// its distance beyond every thickness); an implementation may skip the path test when
+    /// the relative path is shorter than that.
+    fn sweep(
+        &self,
+        t0: f64,
+        x0: &Vec3,
+        t1: f64,
+        x1: &Vec3,
+        start_gap_lower_bound: f64,
+        reach: f64,
+    ) -> Proximity;
+
+    /// An upper bound on how far any surface point moves between `t0` and `t1` (0 when
+    /// every body is static).
+    fn motion_bound(&self, t0: f64, t1: f64) -> f64;
+
+    /// The largest contact thickness of any body.
+    fn max_thickness(&self) -> f64;
+
+    /// The sharp features of every body at time `t`, appended to `out`.
+    fn sharp_features(&self, t: f64, out: &mut Vec<SharpFeature>);
+}

@@ -1,0 +1,218 @@
+//! Sharp body features against cloth triangles. Particle contacts alone let a cube's
+//! corner or a table's edge poke between the particles of a coarse sheet; this pass finds
+//! each sharp feature under a cloth triangle and pushes the triangle out to the contact
+//! thickness, with an inelastic impulse, both shared among the triangle's particles by
+//! barycentric weight and inverse mass (Bridson, Fedkiw & Anderson 2002).
+
+use super::SharpFeature;
+use crate::Vec3;
+
+/// A triangle is skipped unless some vertex is within its longest edge plus this many
+/// contact thicknesses of a body (by the particles' gap bounds).
+const NEAR_FACTOR: f64 = 1.0;
+
+/// Pushes every cloth triangle lying within a feature's thickness (or through it, by no
+/// more than this step's motion) back out; returns how many were pushed.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn resolve_features(
+    features: &[SharpFeature],
+    triangles: &[[usize; 3]],
+    x_start: &[Vec3],
+    x_new: &mut [Vec3],
+    v_new: &mut [Vec3],
+    inv_mass: &[f64],
+    gap_bound: impl Fn(usize) -> f64,
+    max_thickness: f64,
+) -> usize {
+    if features.is_empty() {
+        return 0;
+    }
+    let mut pushed = 0;
+    for tri in triangles {
+        let mut p = tri.map(|i| x_new[i]);
+        let longest = (p[1] - p[0])
+            .norm()
+            .max((p[2] - p[1]).norm())
+            .max((p[0] - p[2]).norm());
+        let nearest = tri.iter().map(|&i| gap_bound(i)).fold(f64::INFINITY, f64::min);
+        if nearest > longest + NEAR_FACTOR * max_thickness {
+            continue;
+        }
+        let moved = tri
+            .iter()
+            .map(|&i| (x_new[i] - x_start[i]).norm())
+            .fold(0.0, f64::max);
+        for f in features {
+            if !boxes_overlap(&p, f) {
+                continue;
+            }
+            let Some(hit) = feature_under_triangle(&p, f) else {
+                continue;
+            };
+            // Deeper than this step's motion could carry it: the cloth is legitimately on
+            // the other side of the feature, not pushed through it now.
+            if hit.gap < -(f.thickness + moved) {
+                continue;
+            }
+            let w = hit.weights;
+            let denom: f64 = (0..3).map(|k| w[k] * w[k] * inv_mass[tri[k]]).sum();
+            if denom <= 0.0 {
+                continue;
+            }
+            let push = f.thickness - hit.gap;
+            let cloth_velocity: Vec3 = (0..3).map(|k| w[k] * v_new[tri[k]]).sum();
+            let into = (cloth_velocity - f.velocity).dot(&hit.normal).min(0.0);
+            for k in 0..3 {
+                let share = w[k] * inv_mass[tri[k]] / denom;
+                x_new[tri[k]] += (push * share) * hit.normal;
+                v_new[tri[k]] -= (into * share) * hit.normal;
+            }
+            p = tri.map(|i| x_new[i]);
+            pushed += 1;
+        }
+    }
+    pushed
+}
+
+fn boxes_overlap(p: &[Vec3; 3], f: &SharpFeature) -> bool {
+    (0..3).all(|k| {
+        let lo = p[0][k].min(p[1][k]).min(p[2][k]);
+        let hi = p[0][k].max(p[1][k]).max(p[2][k]);
+        let flo = f.a[k].min(f.b[k]) - f.thickness;
+        let fhi = f.a[k].max(f.b[k]) + f.thickness;
+        lo <= fhi && flo <= hi
+    })
+}
+
+/// The deepest point of a feature whose projection on a triangle's plane falls inside it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FeatureHit {
+    /// Barycentric weights of the projection.
+    pub weights: [f64; 3],
+    /// The triangle's unit normal, turned to the feature's outward side.
+    pub normal: Vec3,
+    /// Height of the triangle's plane above the feature point along `normal` (negative:
+    /// the feature is through the cloth).
+    pub gap: f64,
+}
+
+/// Along a segment feature the projected barycentric weights and the height are affine,
+/// so clipping the segment to the triangle's prism and taking the lower end is exact.
+pub(crate) fn feature_under_triangle(p: &[Vec3; 3], f: &SharpFeature) -> Option<FeatureHit> {
+    let e1 = p[1] - p[0];
+    let e2 = p[2] - p[0];
+    let cross = e1.cross(&e2);
+    let area2 = cross.norm();
+    if area2 <= 1e-14 * (e1.norm_squared() + e2.norm_squared()) {
+        return None;
+    }
+    let mut normal = cross / area2;
+    if normal.dot(&f.normal) < 0.0 {
+        normal = -normal;
+    }
+    // A triangle edge-on to the feature's normal says nothing about which side it is on.
+    if normal.dot(&f.normal) < 0.05 {
+        return None;
+    }
+    let (d00, d01, d11) = (e1.dot(&e1), e1.dot(&e2), e2.dot(&e2));
+    let det = d00 * d11 - d01 * d01;
+    let bary = |q: &Vec3| {
+        let d = q - p[0];
+        let (d20, d21) = (d.dot(&e1), d.dot(&e2));
+        let w1 = (d11 * d20 - d01 * d21) / det;
+        let w2 = (d00 * d21 - d01 * d20) / det;
+        [1.0 - w1 - w2, w1, w2]
+    };
+    let wa = bary(&f.a);
+    let wb = bary(&f.b);
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for k in 0..3 {
+        let slope = wb[k] - wa[k];
+        if slope.abs() < 1e-15 {
+            if wa[k] < 0.0 {
+                return None;
+            }
+        } else if slope > 0.0 {
+            lo = lo.max(-wa[k] / slope);
+        } else {
+            hi = hi.min(-wa[k] / slope);
+        }
+    }
+    if lo > hi {
+        return None;
+    }
+    let rise = normal.dot(&(f.b - f.a));
+    let s = if rise > 0.0 { hi } else { lo };
+    let q = f.a + s * (f.b - f.a);
+    let weights = [0, 1, 2].map(|k| wa[k] + s * (wb[k] - wa[k]));
+    Some(FeatureHit {
+        weights,
+        normal,
+        gap: normal.dot(&(p[0] - q)),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn feature(a: Vec3, b: Vec3) -> SharpFeature {
+        SharpFeature {
+            a,
+            b,
+            normal: Vec3::z(),
+            velocity: Vec3::zeros(),
+            thickness: 0.01,
+        }
+    }
+    const TRI: [Vec3; 3] = [
+        Vec3::new(0.0, 0.0, 0.1),
+        Vec3::new(1.0, 0.0, 0.1),
+        Vec3::new(0.0, 1.0, 0.1),
+    ];
+
+    #[test]
+    fn corner_under_a_triangle() {
+        let hit = feature_under_triangle(
+            &TRI,
+            &feature(Vec3::new(0.25, 0.25, 0.0), Vec3::new(0.25, 0.25, 0.0)),
+        )
+        .expect("under");
+        assert!((hit.gap - 0.1).abs() < 1e-14);
+        assert!((hit.weights[0] - 0.5).abs() < 1e-14 && (hit.weights[1] - 0.25).abs() < 1e-14);
+        assert!(
+            feature_under_triangle(&TRI, &feature(Vec3::new(0.8, 0.8, 0.0), Vec3::new(0.8, 0.8, 0.0)))
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn edge_clipped_to_the_triangle_takes_its_highest_point() {
+        // Rising edge from (-1, 0.2, 0) to (2, 0.2, 0.3): inside the triangle for x in [0, 0.8];
+        // its highest point there is at x = 0.8, z = 0.18, which pokes through the plane z = 0.1.
+        let hit = feature_under_triangle(
+            &TRI,
+            &feature(Vec3::new(-1.0, 0.2, 0.0), Vec3::new(2.0, 0.2, 0.3)),
+        )
+        .expect("under");
+        assert!((hit.gap - (0.1 - 0.18)).abs() < 1e-12, "{hit:?}");
+        assert!((hit.weights[1] - 0.8).abs() < 1e-12 && (hit.weights[0]).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_corner_through_a_triangle_is_pushed_out() {
+        let tris = [[0, 1, 2]];
+        let start = TRI.to_vec();
+        let mut x: Vec<Vec3> = TRI.iter().map(|p| p - Vec3::new(0.0, 0.0, 0.15)).collect();
+        let mut v = vec![Vec3::new(0.0, 0.0, -1.0); 3];
+        let f = [feature(Vec3::new(0.3, 0.3, 0.0), Vec3::new(0.3, 0.3, 0.0))];
+        let n = resolve_features(&f, &tris, &start, &mut x, &mut v, &[1.0; 3], |_| 0.0, 0.01);
+        assert_eq!(n, 1);
+        // The cloth point over the corner sits at the thickness, and no longer moves into it.
+        let w = [0.4, 0.3, 0.3];
+        let xc: Vec3 = (0..3).map(|k| w[k] * x[k]).sum();
+        let vc: Vec3 = (0..3).map(|k| w[k] * v[k]).sum();
+        assert!((xc - Vec3::new(0.3, 0.3, 0.01)).norm() < 1e-12, "{xc:?}");
+        assert!(vc.z.abs() < 1e-12, "{vc:?}");
+    }
+}

@@ -1,0 +1,89 @@
+//! Contact of the cloth with rigid bodies, reached through the [`Collider`] trait.
+
+mod collider;
+mod feature_contacts;
+mod particle_contacts;
+
+pub use collider::{Collider, Proximity, SharpFeature, SurfacePoint};
+pub(crate) use particle_contacts::ParticleContacts;
+pub use particle_contacts::{ContactMode, SLIP_SPEED};
+
+use crate::Vec3;
+use std::sync::Arc;
+
+/// Everything the solver keeps for contacts: the bodies, the per-particle state and the
+/// scratch of the end-of-step passes.
+#[derive(Debug)]
+pub(crate) struct Contacts {
+    pub collider: Arc<dyn Collider>,
+    pub particles: ParticleContacts,
+    features: Vec<SharpFeature>,
+    /// Inverse masses, zero for pinned particles (they do not yield to a push).
+    inv_mass: Vec<f64>,
+}
+
+/// What the end-of-step contact passes did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct ContactCounts {
+    pub corrected: usize,
+    pub crossings: usize,
+    pub features: usize,
+}
+
+impl Contacts {
+    pub fn new(collider: Arc<dyn Collider>, masses: &[f64], pinned: &[bool]) -> Self {
+        // Far particles are not asked again until they may have come within this much of
+        // the contact layer; a few thicknesses keep the bounded queries cheap.
+        let reach = 4.0 * collider.max_thickness();
+        let inv_mass = masses
+            .iter()
+            .zip(pinned)
+            .map(|(m, &p)| if p { 0.0 } else { 1.0 / m })
+            .collect();
+        Self {
+            collider,
+            particles: ParticleContacts::new(masses.len(), reach),
+            features: Vec::with_capacity(64),
+            inv_mass,
+        }
+    }
+
+    /// The end-of-step passes: friction and release, the path test of every particle, and
+    /// sharp features against cloth triangles.
+    #[allow(clippy::too_many_arguments)]
+    pub fn finish_step(
+        &mut self,
+        t0: f64,
+        h: f64,
+        triangles: &[[usize; 3]],
+        x: &[Vec3],
+        x_new: &mut [Vec3],
+        v_new: &mut [Vec3],
+        pinned: &[bool],
+        parallel: bool,
+    ) -> ContactCounts {
+        self.particles.finish(v_new);
+        let collider = self.collider.as_ref();
+        let sweep = self
+            .particles
+            .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, parallel);
+        self.features.clear();
+        collider.sharp_features(t0 + h, &mut self.features);
+        let particles = &self.particles;
+        let features = feature_contacts::resolve_features(
+            &self.features,
+            triangles,
+            x,
+            x_new,
+            v_new,
+            &self.inv_mass,
+            |i| particles.gap_lower_bound(i),
+            collider.max_thickness(),
+        );
+        ContactCounts {
+            corrected: sweep.corrected,
+            crossings: sweep.crossings,
+            features,
+        }
+    }
+}

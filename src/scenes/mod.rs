@@ -1,0 +1,71 @@
+//! Ready-made contact scenes: the examples run them and the integration tests check them.
+//! Each is a parameter struct with sensible defaults whose `build` gives a [`Scene`].
+
+mod cube_corner;
+mod falling_plate;
+mod sphere_drop;
+mod tablecloth;
+mod tilted_plane;
+mod turning_sphere;
+
+pub use cube_corner::CubeCorner;
+pub use falling_plate::FallingPlate;
+pub use sphere_drop::SphereDrop;
+pub use tablecloth::Tablecloth;
+pub use tilted_plane::TiltedPlane;
+pub use turning_sphere::TurningSphere;
+
+use crate::collide::{Bodies, BodyError, SurfaceError};
+use cloth_core::{ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Simulation, Vec3};
+use std::sync::Arc;
+
+/// A simulation with the bodies it collides with (kept to measure penetration).
+#[derive(Debug)]
+pub struct Scene {
+    pub simulation: Simulation,
+    pub bodies: Arc<Bodies>,
+}
+
+impl Scene {
+    /// How deep the deepest particle is inside a body now, m (0 when none is).
+    pub fn deepest_penetration(&self) -> f64 {
+        self.bodies
+            .deepest_inside(self.simulation.time(), self.simulation.positions())
+            .0
+    }
+}
+
+/// Why a scene could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error(transparent)]
+    Surface(#[from] SurfaceError),
+    #[error(transparent)]
+    Body(#[from] BodyError),
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    #[error(transparent)]
+    Param(#[from] ParamError),
+}
+
+/// The fabric of the scenes: cotton-like, with a little stiffness damping and air drag.
+pub fn scene_fabric() -> Fabric {
+    Fabric::cotton_like().with_damping(2e-3).with_drag(0.05)
+}
+
+/// A square sheet of `n` x `n` particles, `size` wide, centred on `centre`, spanned by the
+/// unit vectors `u` and `v` (alternating diagonals: the square's symmetries).
+pub(crate) fn square_sheet(
+    n: usize,
+    size: f64,
+    centre: Vec3,
+    u: Vec3,
+    v: Vec3,
+) -> Result<ClothMesh, MeshError> {
+    let origin = centre - 0.5 * size * (u + v);
+    GridBuilder::new(n, n)
+        .size(size, size)
+        .origin(origin)
+        .axes(u, v)
+        .build()
+}
