@@ -1,18 +1,136 @@
 //! Sharp body features against cloth triangles. Particle contacts alone let a cube's
-//! corner or a table's edge poke between the particles of a coarse sheet; this pass finds
-//! each sharp feature under a cloth triangle and pushes the triangle out to the contact
-//! thickness, with an inelastic impulse, both shared among the triangle's particles by
-//! barycentric weight and inverse mass (Bridson, Fedkiw & Anderson 2002).
+//! corner or a table's edge poke between the particles of a coarse sheet. Each sharp
+//! feature under a cloth triangle, closer than the contact thickness, pushes the triangle
+//! out through a stiff one-sided spring on the gap, shared among the triangle's particles by
+//! barycentric weight and part of the implicit solve (so the cloth draped over an edge
+//! rests on it instead of being kicked off every step). A feature found through a triangle
+//! at the end of a step is pushed back out at once, with an inelastic impulse (Bridson,
+//! Fedkiw & Anderson 2002).
 
 use super::SharpFeature;
+use crate::linalg::BlockSparse;
 use crate::Vec3;
 
-/// A triangle is skipped unless some vertex is within its longest edge plus this many
-/// contact thicknesses of a body (by the particles' gap bounds).
-const NEAR_FACTOR: f64 = 1.0;
+/// Features within `(1 + BAND)` thicknesses of a triangle are in contact.
+const BAND: f64 = 0.5;
 
-/// Pushes every cloth triangle lying within a feature's thickness (or through it, by no
-/// more than this step's motion) back out; returns how many were pushed.
+/// A triangle is skipped unless some vertex is within its longest edge plus the largest
+/// contact thickness of a body (by the particles' gap bounds).
+fn near_body(tri: &[usize; 3], p: &[Vec3; 3], gap_bound: &impl Fn(usize) -> f64, max_thickness: f64) -> bool {
+    let longest = (p[1] - p[0])
+        .norm()
+        .max((p[2] - p[1]).norm())
+        .max((p[0] - p[2]).norm());
+    let nearest = tri.iter().map(|&i| gap_bound(i)).fold(f64::INFINITY, f64::min);
+    nearest <= longest + max_thickness
+}
+
+/// A sharp feature under a cloth triangle, frozen for one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FeatureContact {
+    pub triangle: [usize; 3],
+    pub weights: [f64; 3],
+    pub normal: Vec3,
+    /// The feature's deepest point under the triangle.
+    pub point: Vec3,
+    pub thickness: f64,
+}
+
+impl FeatureContact {
+    fn gap(&self, x: &[Vec3]) -> f64 {
+        let cloth: Vec3 = (0..3).map(|k| self.weights[k] * x[self.triangle[k]]).sum();
+        self.normal.dot(&(cloth - self.point))
+    }
+}
+
+/// The feature contacts of a step: every feature under a cloth triangle within the
+/// thickness (and not through it by more than the thickness, which is the cloth lying on
+/// the far side of a feature, not touching it).
+pub(crate) fn detect_features(
+    features: &[SharpFeature],
+    triangles: &[[usize; 3]],
+    x: &[Vec3],
+    gap_bound: impl Fn(usize) -> f64,
+    max_thickness: f64,
+    out: &mut Vec<FeatureContact>,
+) {
+    out.clear();
+    if features.is_empty() {
+        return;
+    }
+    for tri in triangles {
+        let p = tri.map(|i| x[i]);
+        if !near_body(tri, &p, &gap_bound, max_thickness) {
+            continue;
+        }
+        for f in features {
+            if !boxes_overlap(&p, f, (1.0 + BAND) * f.thickness) {
+                continue;
+            }
+            let Some(ends) = feature_under_triangle(&p, f) else {
+                continue;
+            };
+            for hit in ends.into_iter().flatten() {
+                if hit.gap < (1.0 + BAND) * f.thickness && hit.gap > -f.thickness {
+                    out.push(FeatureContact {
+                        triangle: *tri,
+                        weights: hit.weights,
+                        normal: hit.normal,
+                        point: hit.point,
+                        thickness: f.thickness,
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// The penalty `E = k/2 (d - g)^2` of each contact whose gap `g` is under its thickness
+/// `d`: forces into `force`, `K v` into `kv`, and `scale K` into `matrix` (K = k w w^T n n^T
+/// with the weights and normal frozen, so it is PSD). Returns the energy.
+pub(crate) fn add_penalty(
+    contacts: &[FeatureContact],
+    stiffness: f64,
+    x: &[Vec3],
+    v: &[Vec3],
+    force: &mut [Vec3],
+    kv: &mut [Vec3],
+    mut matrix: Option<(&mut BlockSparse, f64)>,
+) -> f64 {
+    let mut energy = 0.0;
+    for c in contacts {
+        let depth = c.thickness - c.gap(x);
+        if depth <= -BAND * c.thickness {
+            continue;
+        }
+        // Just outside the thickness the spring exerts nothing yet, but its stiffness is
+        // already in the step's Jacobian: a triangle closing in meets the spring within the
+        // step instead of overshooting into it and being thrown back the next.
+        let depth = depth.max(0.0);
+        energy += 0.5 * stiffness * depth * depth;
+        let (w, n, t) = (c.weights, c.normal, c.triangle);
+        let closing: f64 = (0..3).map(|k| w[k] * n.dot(&v[t[k]])).sum();
+        for a in 0..3 {
+            force[t[a]] += (stiffness * depth * w[a]) * n;
+            kv[t[a]] += (stiffness * w[a] * closing) * n;
+        }
+        if let Some((m, scale)) = matrix.as_mut() {
+            let nn = n * n.transpose();
+            for a in 0..3 {
+                for b in 0..3 {
+                    // Both particles share the triangle, so the block exists.
+                    if let Some(slot) = m.slot(t[a], t[b]) {
+                        m.blocks_mut()[slot] += (*scale * stiffness * w[a] * w[b]) * nn;
+                    }
+                }
+            }
+        }
+    }
+    energy
+}
+
+/// Pushes back out every cloth triangle that a feature went through during the step (by
+/// no more than the step's motion could carry it); returns how many.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn resolve_features(
     features: &[SharpFeature],
@@ -30,12 +148,7 @@ pub(crate) fn resolve_features(
     let mut pushed = 0;
     for tri in triangles {
         let mut p = tri.map(|i| x_new[i]);
-        let longest = (p[1] - p[0])
-            .norm()
-            .max((p[2] - p[1]).norm())
-            .max((p[0] - p[2]).norm());
-        let nearest = tri.iter().map(|&i| gap_bound(i)).fold(f64::INFINITY, f64::min);
-        if nearest > longest + NEAR_FACTOR * max_thickness {
+        if !near_body(tri, &p, &gap_bound, max_thickness) {
             continue;
         }
         let moved = tri
@@ -43,15 +156,15 @@ pub(crate) fn resolve_features(
             .map(|&i| (x_new[i] - x_start[i]).norm())
             .fold(0.0, f64::max);
         for f in features {
-            if !boxes_overlap(&p, f) {
+            if !boxes_overlap(&p, f, f.thickness + moved) {
                 continue;
             }
-            let Some(hit) = feature_under_triangle(&p, f) else {
+            let Some(hit) = feature_under_triangle(&p, f).and_then(deepest) else {
                 continue;
             };
             // Deeper than this step's motion could carry it: the cloth is legitimately on
             // the other side of the feature, not pushed through it now.
-            if hit.gap < -(f.thickness + moved) {
+            if hit.gap >= 0.0 || hit.gap < -(f.thickness + moved) {
                 continue;
             }
             let w = hit.weights;
@@ -74,17 +187,18 @@ pub(crate) fn resolve_features(
     pushed
 }
 
-fn boxes_overlap(p: &[Vec3; 3], f: &SharpFeature) -> bool {
+/// Whether the triangle's box meets the feature's, grown by `margin`.
+fn boxes_overlap(p: &[Vec3; 3], f: &SharpFeature, margin: f64) -> bool {
     (0..3).all(|k| {
         let lo = p[0][k].min(p[1][k]).min(p[2][k]);
         let hi = p[0][k].max(p[1][k]).max(p[2][k]);
-        let flo = f.a[k].min(f.b[k]) - f.thickness;
-        let fhi = f.a[k].max(f.b[k]) + f.thickness;
+        let flo = f.a[k].min(f.b[k]) - margin;
+        let fhi = f.a[k].max(f.b[k]) + margin;
         lo <= fhi && flo <= hi
     })
 }
 
-/// The deepest point of a feature whose projection on a triangle's plane falls inside it.
+/// One end of the part of a feature whose projection on a triangle's plane falls inside it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FeatureHit {
     /// Barycentric weights of the projection.
@@ -94,11 +208,16 @@ pub(crate) struct FeatureHit {
     /// Height of the triangle's plane above the feature point along `normal` (negative:
     /// the feature is through the cloth).
     pub gap: f64,
+    /// The feature point.
+    pub point: Vec3,
 }
 
-/// Along a segment feature the projected barycentric weights and the height are affine,
-/// so clipping the segment to the triangle's prism and taking the lower end is exact.
-pub(crate) fn feature_under_triangle(p: &[Vec3; 3], f: &SharpFeature) -> Option<FeatureHit> {
+/// The part of a feature under a triangle, by its ends (one for a corner). Along a segment
+/// the projected barycentric weights and the height are affine, so clipping the segment to
+/// the triangle's prism is exact, and springs at both ends of the clipped part hold it off
+/// the cloth smoothly: the penalty does not jump from one end to the other as the segment
+/// tilts through parallel to the cloth.
+pub(crate) fn feature_under_triangle(p: &[Vec3; 3], f: &SharpFeature) -> Option<[Option<FeatureHit>; 2]> {
     let e1 = p[1] - p[0];
     let e2 = p[2] - p[0];
     let cross = e1.cross(&e2);
@@ -141,20 +260,31 @@ pub(crate) fn feature_under_triangle(p: &[Vec3; 3], f: &SharpFeature) -> Option<
     if lo > hi {
         return None;
     }
-    let rise = normal.dot(&(f.b - f.a));
-    let s = if rise > 0.0 { hi } else { lo };
-    let q = f.a + s * (f.b - f.a);
-    let weights = [0, 1, 2].map(|k| wa[k] + s * (wb[k] - wa[k]));
-    Some(FeatureHit {
-        weights,
-        normal,
-        gap: normal.dot(&(p[0] - q)),
-    })
+    let end = |s: f64| {
+        let q = f.a + s * (f.b - f.a);
+        FeatureHit {
+            weights: [0, 1, 2].map(|k| wa[k] + s * (wb[k] - wa[k])),
+            normal,
+            gap: normal.dot(&(p[0] - q)),
+            point: q,
+        }
+    };
+    let second = (hi - lo > 1e-9).then(|| end(hi));
+    Some([Some(end(lo)), second])
+}
+
+/// The deeper of a feature's ends under a triangle.
+fn deepest(ends: [Option<FeatureHit>; 2]) -> Option<FeatureHit> {
+    ends.into_iter().flatten().min_by(|a, b| a.gap.total_cmp(&b.gap))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn feature_under_triangle_deepest(p: &[Vec3; 3], f: &SharpFeature) -> Option<FeatureHit> {
+        feature_under_triangle(p, f).and_then(deepest)
+    }
 
     fn feature(a: Vec3, b: Vec3) -> SharpFeature {
         SharpFeature {
@@ -173,24 +303,25 @@ mod tests {
 
     #[test]
     fn corner_under_a_triangle() {
-        let hit = feature_under_triangle(
+        let hit = feature_under_triangle_deepest(
             &TRI,
             &feature(Vec3::new(0.25, 0.25, 0.0), Vec3::new(0.25, 0.25, 0.0)),
         )
         .expect("under");
         assert!((hit.gap - 0.1).abs() < 1e-14);
         assert!((hit.weights[0] - 0.5).abs() < 1e-14 && (hit.weights[1] - 0.25).abs() < 1e-14);
-        assert!(
-            feature_under_triangle(&TRI, &feature(Vec3::new(0.8, 0.8, 0.0), Vec3::new(0.8, 0.8, 0.0)))
-                .is_none()
-        );
+        assert!(feature_under_triangle_deepest(
+            &TRI,
+            &feature(Vec3::new(0.8, 0.8, 0.0), Vec3::new(0.8, 0.8, 0.0))
+        )
+        .is_none());
     }
 
     #[test]
     fn edge_clipped_to_the_triangle_takes_its_highest_point() {
         // Rising edge from (-1, 0.2, 0) to (2, 0.2, 0.3): inside the triangle for x in [0, 0.8];
         // its highest point there is at x = 0.8, z = 0.18, which pokes through the plane z = 0.1.
-        let hit = feature_under_triangle(
+        let hit = feature_under_triangle_deepest(
             &TRI,
             &feature(Vec3::new(-1.0, 0.2, 0.0), Vec3::new(2.0, 0.2, 0.3)),
         )

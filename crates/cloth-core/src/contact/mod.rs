@@ -17,7 +17,11 @@ use std::sync::Arc;
 pub(crate) struct Contacts {
     pub collider: Arc<dyn Collider>,
     pub particles: ParticleContacts,
+    /// Sharp features at the end of the current step, and those under cloth triangles.
     features: Vec<SharpFeature>,
+    feature_hits: Vec<feature_contacts::FeatureContact>,
+    /// Stiffness of the feature penalty, N/m.
+    feature_stiffness: f64,
     /// Inverse masses, zero for pinned particles (they do not yield to a push).
     inv_mass: Vec<f64>,
 }
@@ -31,7 +35,10 @@ pub(crate) struct ContactCounts {
 }
 
 impl Contacts {
-    pub fn new(collider: Arc<dyn Collider>, masses: &[f64], pinned: &[bool]) -> Self {
+    /// `feature_stiffness` (N/m) is the fabric's own tensile stiffness: as stiff as the
+    /// cloth, so it holds the cloth at the feature without making explicit steps any less
+    /// stable than the cloth already does.
+    pub fn new(collider: Arc<dyn Collider>, masses: &[f64], pinned: &[bool], feature_stiffness: f64) -> Self {
         // Far particles are not asked again until they may have come within this much of
         // the contact layer; a few thicknesses keep the bounded queries cheap.
         let reach = 4.0 * collider.max_thickness();
@@ -44,8 +51,50 @@ impl Contacts {
             collider,
             particles: ParticleContacts::new(masses.len(), reach),
             features: Vec::with_capacity(64),
+            feature_hits: Vec::new(),
+            feature_stiffness,
             inv_mass,
         }
+    }
+
+    /// Finds the sharp features (at the step's end time `t1`) under cloth triangles at `x`.
+    pub fn detect_features(&mut self, t1: f64, triangles: &[[usize; 3]], x: &[Vec3]) {
+        self.features.clear();
+        self.collider.sharp_features(t1, &mut self.features);
+        let particles = &self.particles;
+        feature_contacts::detect_features(
+            &self.features,
+            triangles,
+            x,
+            |i| particles.gap_lower_bound(i),
+            self.collider.max_thickness(),
+            &mut self.feature_hits,
+        );
+    }
+
+    /// Number of feature contacts in the current step.
+    pub fn feature_contacts(&self) -> usize {
+        self.feature_hits.len()
+    }
+
+    /// The feature penalty's forces, `K v` and (with a matrix) `scale K`; returns its energy.
+    pub fn add_feature_penalty(
+        &self,
+        x: &[Vec3],
+        v: &[Vec3],
+        force: &mut [Vec3],
+        kv: &mut [Vec3],
+        matrix: Option<(&mut crate::linalg::BlockSparse, f64)>,
+    ) -> f64 {
+        feature_contacts::add_penalty(
+            &self.feature_hits,
+            self.feature_stiffness,
+            x,
+            v,
+            force,
+            kv,
+            matrix,
+        )
     }
 
     /// The end-of-step passes: friction and release, the path test of every particle, and
@@ -67,8 +116,6 @@ impl Contacts {
         let sweep = self
             .particles
             .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, parallel);
-        self.features.clear();
-        collider.sharp_features(t0 + h, &mut self.features);
         let particles = &self.particles;
         let features = feature_contacts::resolve_features(
             &self.features,

@@ -44,7 +44,7 @@ impl Simulation {
             None
         };
         let ws = &mut self.ws;
-        self.model.evaluate(
+        let mut energy = self.model.evaluate(
             &self.x,
             &self.v,
             &s.gravity,
@@ -53,7 +53,12 @@ impl Simulation {
             &mut ws.hv,
             target,
             s.parallel,
-        )
+        );
+        if let Some(contacts) = &self.contacts {
+            let matrix = with_stiffness.then_some((&mut self.matrix, h * h));
+            energy += contacts.add_feature_penalty(&self.x, &self.v, &mut ws.force, &mut ws.hv, matrix);
+        }
+        energy
     }
 
     /// The system matrix of the last implicit step (unfiltered).

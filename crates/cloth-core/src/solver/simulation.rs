@@ -121,7 +121,13 @@ impl SimulationBuilder {
         }
         let (model, matrix) = ForceModel::new(&self.mesh, self.fabric);
         let contacts = self.collider.map(|collider| {
-            let mut c = Contacts::new(collider, model.masses(), &pinned);
+            let fabric = model.fabric();
+            let stiffness = fabric
+                .warp
+                .extension(0.0)
+                .slope
+                .max(fabric.weft.extension(0.0).slope);
+            let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness);
             c.particles
                 .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
             c
@@ -295,6 +301,7 @@ impl Simulation {
         }
         if let Some(contacts) = &mut self.contacts {
             contacts.particles.constrain(h, &self.v, &self.pinned);
+            contacts.detect_features(self.time + h, self.mesh.triangles(), &self.x);
         }
         self.refill_filter(h).map_err(|reason| SimError::Solver {
             step: self.steps + 1,
@@ -448,6 +455,7 @@ impl Simulation {
         };
         let start = Instant::now();
         stats.contacts = contacts.particles.active.len();
+        stats.feature_contacts = contacts.feature_contacts();
         let counts = contacts.finish_step(
             self.time,
             h,

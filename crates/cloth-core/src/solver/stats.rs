@@ -33,7 +33,10 @@ pub struct StepStats {
     pub contact_corrections: usize,
     /// Of those, particles whose path entered a body within the step.
     pub crossings: usize,
-    /// Cloth triangles pushed off a sharp body feature.
+    /// Sharp body features under cloth triangles, held off by the feature penalty.
+    pub feature_contacts: usize,
+    /// Cloth triangles found pierced by a sharp feature at the end of the step and pushed
+    /// back out.
     pub feature_corrections: usize,
     /// Wall time in the end-of-step contact passes, s.
     pub contact_seconds: f64,
