@@ -14,6 +14,9 @@ pub struct CubeCorner {
     pub drop_height: f64,
     pub friction: f64,
     pub thickness: f64,
+    /// Fold angle above which the cube's edges and corners are sharp features, rad
+    /// (beyond pi: none, so only the particles collide).
+    pub sharp_angle: f64,
     pub time_step: f64,
 }
 
@@ -26,6 +29,7 @@ impl Default for CubeCorner {
             drop_height: 0.05,
             friction: 0.5,
             thickness: 0.003,
+            sharp_angle: crate::collide::DEFAULT_SHARP_ANGLE,
             time_step: 1.0 / 120.0,
         }
     }
@@ -47,7 +51,8 @@ impl CubeCorner {
         let body = Body::new("cube", cube)
             .with_pose(self.cube_pose())?
             .with_thickness(self.thickness)?
-            .with_friction(self.friction)?;
+            .with_friction(self.friction)?
+            .with_sharp_angle(self.sharp_angle)?;
         let bodies = Arc::new(Bodies::new(vec![body]));
         // Shift the sheet by a third of a cell so the corner is inside a triangle.
         let cell = self.sheet_size / (self.particles_per_side - 1) as f64;

@@ -6,8 +6,9 @@ use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
 use crate::Motion;
 use cloth_core::Vec3;
 use nalgebra::{Isometry3, Point3};
-use parry3d_f64::query::{PointQuery, Ray, RayCast};
-use parry3d_f64::shape::{TriMesh, TriMeshFlags};
+use parry3d_f64::query::{PointQuery, PointQueryWithLocation, Ray, RayCast};
+use parry3d_f64::shape::{TriMesh, TriMeshFlags, TrianglePointLocation};
+use std::collections::HashSet;
 
 /// Default contact thickness, m: a few millimetres, about a fabric's thickness.
 pub const DEFAULT_THICKNESS: f64 = 0.003;
@@ -34,6 +35,7 @@ pub struct Body {
     mesh: TriMesh,
     sharp: Vec<SurfaceFeature>,
     sharp_angle: f64,
+    shading: Shading,
     motion: Motion,
     thickness: f64,
     friction: f64,
@@ -63,12 +65,14 @@ impl Body {
             .expect("a TriSurface has triangles");
         let radius = surface.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max);
         let sharp = surface.sharp_features(DEFAULT_SHARP_ANGLE);
+        let shading = Shading::new(&surface, &sharp, DEFAULT_SHARP_ANGLE);
         Self {
             name: name.into(),
             surface,
             mesh,
             sharp,
             sharp_angle: DEFAULT_SHARP_ANGLE,
+            shading,
             motion: Motion::default(),
             thickness: DEFAULT_THICKNESS,
             friction: DEFAULT_FRICTION,
@@ -140,6 +144,7 @@ impl Body {
         self.check(angle > 0.0, "sharp_angle", angle, "a positive angle in radians")?;
         self.sharp_angle = angle;
         self.sharp = self.surface.sharp_features(angle);
+        self.shading = Shading::new(&self.surface, &self.sharp, angle);
         Ok(self)
     }
 
@@ -210,6 +215,10 @@ impl Body {
                 // A hit from inside is the particle leaving (it started inside): not an entry.
                 if n.dot(&path) < 0.0 {
                     let entry = p0 + hit.time_of_impact * path;
+                    let (_, (triangle, location)) = self
+                        .mesh
+                        .project_local_point_and_get_location(to_parry(&entry), false);
+                    let n = self.shading.normal(&self.mesh, triangle, &location).unwrap_or(n);
                     return Some(BodyPoint {
                         point: (pose1 * Point3::from(entry)).coords,
                         normal: pose1.rotation * n,
@@ -220,20 +229,19 @@ impl Body {
                 }
             }
         }
-        let proj = self
-            .mesh
-            .project_local_point_with_max_dist(to_parry(&p1), false, max_distance)?;
+        let (proj, (triangle, location)) = self.mesh.project_local_point_and_get_location_with_max_dist(
+            to_parry(&p1),
+            false,
+            max_distance,
+        )?;
         let q = from_parry(proj.point);
         let offset = p1 - q;
         let distance = offset.norm();
         let sign = if proj.is_inside { -1.0 } else { 1.0 };
-        // Far enough from the surface, the direction to the particle is the distance
-        // field's gradient, smooth across edges; on the surface take the face's normal.
-        let normal = if distance > 1e-9 * self.radius.max(1e-3) {
-            sign * offset / distance
-        } else {
-            let face = self.mesh.triangle(proj.subshape);
-            from_parry(face.scaled_normal()).normalize()
+        let normal = match self.shading.normal(&self.mesh, triangle, &location) {
+            Some(smooth) => smooth,
+            None if distance > 1e-9 * self.radius.max(1e-3) => sign * offset / distance,
+            None => from_parry(self.mesh.triangle(triangle).scaled_normal()).normalize(),
         };
         Some(BodyPoint {
             point: (pose1 * Point3::from(q)).coords,
@@ -242,5 +250,94 @@ impl Body {
             crossed: false,
             entry: 1.0,
         })
+    }
+}
+
+/// The contact normal over a tessellated smooth surface. The distance field's own gradient
+/// points away from the nearest vertex or edge of the tessellation, and turns at a rate of
+/// one over the distance around each: a particle near a facet vertex of a sphere would be
+/// pushed off radially from that vertex, breaking the body's symmetry. Over the smooth part
+/// the normal is instead interpolated from per-corner normals that average only the faces
+/// meeting smoothly; on a sharp edge or corner the gradient is the right normal and is kept.
+#[derive(Debug, Clone)]
+struct Shading {
+    /// Per triangle, the normal at each corner.
+    corners: Vec<[Vec3; 3]>,
+    sharp_edges: HashSet<(u32, u32)>,
+    sharp_vertices: Vec<bool>,
+}
+
+impl Shading {
+    fn new(surface: &TriSurface, sharp: &[SurfaceFeature], angle: f64) -> Self {
+        let (v, t) = (surface.vertices(), surface.triangles());
+        let face_normal = |tri: &[u32; 3]| {
+            let [a, b, c] = tri.map(|i| v[i as usize]);
+            (b - a).cross(&(c - a)).normalize()
+        };
+        let corner_angle = |tri: &[u32; 3], k: usize| {
+            let p = tri.map(|i| v[i as usize]);
+            let (e1, e2) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+            e1.angle(&e2)
+        };
+        let normals: Vec<Vec3> = t.iter().map(face_normal).collect();
+        let mut around = vec![Vec::new(); v.len()];
+        for (f, tri) in t.iter().enumerate() {
+            for (k, &i) in tri.iter().enumerate() {
+                around[i as usize].push((f, k));
+            }
+        }
+        let cos_limit = angle.cos();
+        let corners = t
+            .iter()
+            .enumerate()
+            .map(|(f, tri)| {
+                [0, 1, 2].map(|k| {
+                    let sum: Vec3 = around[tri[k] as usize]
+                        .iter()
+                        .filter(|(g, _)| normals[*g].dot(&normals[f]) >= cos_limit)
+                        .map(|&(g, kg)| corner_angle(&t[g], kg) * normals[g])
+                        .sum();
+                    sum.try_normalize(1e-12).unwrap_or(normals[f])
+                })
+            })
+            .collect();
+        let mut sharp_vertices = vec![false; v.len()];
+        let mut sharp_edges = HashSet::new();
+        for f in sharp {
+            sharp_vertices[f.a as usize] = true;
+            sharp_vertices[f.b as usize] = true;
+            if f.a != f.b {
+                sharp_edges.insert((f.a.min(f.b), f.a.max(f.b)));
+            }
+        }
+        Self {
+            corners,
+            sharp_edges,
+            sharp_vertices,
+        }
+    }
+
+    /// The interpolated normal at a projection, or `None` on a sharp edge or corner.
+    fn normal(&self, mesh: &TriMesh, triangle: u32, location: &TrianglePointLocation) -> Option<Vec3> {
+        let idx = mesh.indices()[triangle as usize];
+        match *location {
+            TrianglePointLocation::OnVertex(i) if self.sharp_vertices[idx[i as usize] as usize] => {
+                return None
+            }
+            TrianglePointLocation::OnEdge(i, _) => {
+                let (a, b) = match i {
+                    0 => (idx[0], idx[1]),
+                    1 => (idx[1], idx[2]),
+                    _ => (idx[0], idx[2]),
+                };
+                if self.sharp_edges.contains(&(a.min(b), a.max(b))) {
+                    return None;
+                }
+            }
+            _ => {}
+        }
+        let w = location.barycentric_coordinates()?;
+        let c = &self.corners[triangle as usize];
+        (w[0] * c[0] + w[1] * c[1] + w[2] * c[2]).try_normalize(1e-12)
     }
 }

@@ -35,9 +35,9 @@ pub(crate) struct ContactCounts {
 }
 
 impl Contacts {
-    /// `feature_stiffness` (N/m) is the fabric's own tensile stiffness: as stiff as the
-    /// cloth, so it holds the cloth at the feature without making explicit steps any less
-    /// stable than the cloth already does.
+    /// `feature_stiffness` (N/m): ten times the fabric's tensile stiffness, so the cloth
+    /// rests within the thickness on a corner carrying its weight; an explicit step must
+    /// be a few times shorter near features than the cloth alone would allow.
     pub fn new(collider: Arc<dyn Collider>, masses: &[f64], pinned: &[bool], feature_stiffness: f64) -> Self {
         // Far particles are not asked again until they may have come within this much of
         // the contact layer; a few thicknesses keep the bounded queries cheap.

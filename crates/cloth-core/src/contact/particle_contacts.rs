@@ -21,6 +21,11 @@ const CORRECTION_RATE: f64 = 0.3;
 /// ratio of the traction to its limit), and the friction never switches discontinuously.
 pub const SLIP_SPEED: f64 = 1e-4;
 
+/// Speed, m/s, below which a velocity or a reaction impulse (per unit mass) is rounding
+/// noise. Decisions (release, moving away) wait for a clear sign, so that mirror-image
+/// particles of a symmetric scene always decide alike.
+const NOISE_SPEED: f64 = 1e-9;
+
 /// How a particle touches a body in this step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ContactMode {
@@ -58,10 +63,54 @@ pub(crate) struct ActiveContact {
     pub correction: f64,
     /// Coulomb coefficient (infinite: no slip).
     pub friction: f64,
-    /// Viscous coefficient of the linearised Coulomb friction, N s/m (0 with no slip).
+    /// Held by friction: a viscous drag `mu p / SLIP_SPEED` (N s/m) against tangential
+    /// motion (0 with no slip, which the constraint holds).
     pub drag: f64,
+    /// Sliding: the kinetic friction force, `mu p` against the sliding direction, N.
+    pub kinetic: Vec3,
+    /// The drag and force already in the system (the matrix and right-hand side take
+    /// differences).
+    applied_drag: f64,
+    applied_kinetic: Vec3,
+    /// Normal force friction is measured by, N.
+    pressure: f64,
+    /// The pressure friction uses is not known yet (a new contact): the first solve finds it.
+    fresh: bool,
+    /// Still holding the particle (false once released within the step).
+    pub live: bool,
+    /// A normal reaction below minus this, N, is the body pulling.
+    pull_limit: f64,
     /// Force the constraint exerted over the step, N.
     pub reaction: Vec3,
+}
+
+impl ActiveContact {
+    /// Coulomb friction for sticking (drag regularised at [`SLIP_SPEED`]) or for sliding
+    /// along `tangential` (the relative tangential velocity).
+    fn set_friction(&mut self, mode: ContactMode, tangential: &Vec3) {
+        if !self.friction.is_finite() {
+            return;
+        }
+        let limit = self.friction * self.pressure;
+        match tangential.try_normalize(1e-12) {
+            Some(t) if mode == ContactMode::Slide => {
+                self.drag = 0.0;
+                self.kinetic = -limit * t;
+            }
+            _ => {
+                self.drag = limit / SLIP_SPEED;
+                self.kinetic = Vec3::zeros();
+            }
+        }
+    }
+
+    fn pressure(&self) -> f64 {
+        self.reaction.dot(&self.normal)
+    }
+    /// The body had to pull the particle to hold it.
+    pub fn pulls(&self) -> bool {
+        self.pressure() < -self.pull_limit
+    }
 }
 
 /// Counters of one step's contact handling.
@@ -117,7 +166,7 @@ impl ParticleContacts {
 
     /// Chooses the particles in contact for a step of length `h` from `v`, and their
     /// constraints: no velocity into the body; with no slip, none along it either.
-    pub fn constrain(&mut self, h: f64, v: &[Vec3], pinned: &[bool]) {
+    pub fn constrain(&mut self, h: f64, v: &[Vec3], masses: &[f64], pinned: &[bool]) {
         self.active.clear();
         for (i, s) in self.state.iter_mut().enumerate() {
             let Proximity::Near(p) = s.proximity else {
@@ -135,28 +184,29 @@ impl ParticleContacts {
                 s.pressure = 0.0;
                 continue;
             }
-            if s.released && relative.dot(&n) > 0.0 {
+            if s.released && relative.dot(&n) > NOISE_SPEED {
                 s.mode = ContactMode::Free;
                 continue;
             }
             s.released = false;
+            let fresh = s.mode == ContactMode::Free;
             let correction = CORRECTION_RATE * (-p.gap()).max(0.0) / h;
-            let (kind, velocity, drag) = if p.friction == f64::INFINITY {
+            let sliding = (relative - relative.dot(&n) * n).norm();
+            let (kind, velocity) = if p.friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
-                (ConstraintKind::Fixed, p.velocity + correction * n, 0.0)
+                (ConstraintKind::Fixed, p.velocity + correction * n)
             } else {
-                // Coulomb friction mu p against the sliding, linearised as drag about the
-                // sliding speed at the start of the step (regularised near zero).
-                let sliding = (relative - relative.dot(&n) * n).norm();
                 s.mode = if sliding > SLIP_SPEED {
                     ContactMode::Slide
                 } else {
                     ContactMode::Stick
                 };
-                let drag = p.friction * s.pressure / sliding.max(SLIP_SPEED);
-                let held = (n.dot(&p.velocity) + correction) * n;
-                (ConstraintKind::Plane { normal: n }, held, drag)
+                (
+                    ConstraintKind::Plane { normal: n },
+                    (n.dot(&p.velocity) + correction) * n,
+                )
             };
+            let tangential = relative - relative.dot(&n) * n;
             self.active.push(ActiveContact {
                 constraint: Constraint {
                     particle: i,
@@ -168,59 +218,128 @@ impl ParticleContacts {
                 body_velocity: p.velocity,
                 correction,
                 friction: p.friction,
-                drag,
+                drag: 0.0,
+                kinetic: Vec3::zeros(),
+                applied_drag: 0.0,
+                applied_kinetic: Vec3::zeros(),
+                pressure: s.pressure,
+                fresh,
+                live: true,
+                pull_limit: masses[i] * NOISE_SPEED / h,
                 reaction: Vec3::zeros(),
             });
+            if let Some(c) = self.active.last_mut() {
+                c.set_friction(s.mode, &tangential);
+            }
         }
     }
 
     /// Adds the active contacts to the filter.
     pub fn push_constraints(&self, filter: &mut Filter) -> Result<(), String> {
-        self.active.iter().try_for_each(|c| filter.push(&c.constraint))
+        self.active
+            .iter()
+            .filter(|c| c.live)
+            .try_for_each(|c| filter.push(&c.constraint))
     }
 
     /// Lets go of the contacts whose body had to pull (negative normal reaction): they are
     /// free for the rest of the step and while they move away. Returns how many.
     pub fn release_pulling(&mut self) -> usize {
-        let before = self.active.len();
-        let state = &mut self.state;
-        self.active.retain(|c| {
-            let pulling = c.reaction.dot(&c.normal) < 0.0;
-            if pulling {
-                let s = &mut state[c.particle];
-                s.released = true;
-                s.mode = ContactMode::Free;
-                s.pressure = 0.0;
-            }
-            !pulling
-        });
-        before - self.active.len()
-    }
-
-    /// The friction drag `-c P (v - v_body)` (P the tangential projection) at `v0`, times
-    /// `scale`, added to `force`.
-    pub fn add_friction_force(&self, v0: &[Vec3], force: &mut [Vec3], scale: f64) {
-        for c in self.active.iter().filter(|c| c.drag > 0.0) {
-            let rel = v0[c.particle] - c.body_velocity;
-            let tangential = rel - rel.dot(&c.normal) * c.normal;
-            force[c.particle] -= (scale * c.drag) * tangential;
+        let mut released = 0;
+        for c in self.active.iter_mut().filter(|c| c.live && c.pulls()) {
+            let s = &mut self.state[c.particle];
+            s.released = true;
+            s.mode = ContactMode::Free;
+            s.pressure = 0.0;
+            c.live = false;
+            released += 1;
         }
+        released
     }
 
-    /// Its velocity Jacobian into the system matrix: `A_ii += scale c P`.
-    pub fn add_friction_jacobian(&self, a: &mut BlockSparse, scale: f64) {
-        for c in self.active.iter().filter(|c| c.drag > 0.0) {
+    /// Friction from the step just solved: a new contact takes its pressure from the
+    /// reaction; a held contact that had to slip faster than [`SLIP_SPEED`] (its drag
+    /// exceeding `mu p`) slides; a sliding one whose sliding turned back sticks. Returns
+    /// how many changed (the step is then solved again). `v_new` is the solved velocity.
+    pub fn settle_friction(&mut self, v_new: impl Fn(usize) -> Vec3) -> usize {
+        let mut changed = 0;
+        for c in self
+            .active
+            .iter_mut()
+            .filter(|c| c.live && c.friction.is_finite())
+        {
+            let rel = v_new(c.particle) - c.body_velocity;
+            let tangential = rel - rel.dot(&c.normal) * c.normal;
+            let mut mode = if c.kinetic == Vec3::zeros() {
+                ContactMode::Stick
+            } else {
+                ContactMode::Slide
+            };
+            let mut update = false;
+            if c.fresh {
+                c.fresh = false;
+                let pressure = c.pressure();
+                if pressure > c.pull_limit {
+                    c.pressure = pressure;
+                    update = true;
+                }
+            }
+            if mode == ContactMode::Stick && tangential.norm() > SLIP_SPEED * (1.0 + 1e-6) && c.pressure > 0.0
+            {
+                mode = ContactMode::Slide;
+                update = true;
+            } else if mode == ContactMode::Slide && tangential.dot(&c.kinetic) > 0.0 {
+                mode = ContactMode::Stick;
+                update = true;
+            }
+            if update {
+                c.set_friction(mode, &tangential);
+                changed += 1;
+            }
+        }
+        changed
+    }
+
+    /// Brings the friction in the system up to date: the drag `-c P (v - v_body)` (P the
+    /// tangential projection) as `b += h F(v0)`, `A += h c P`, and the kinetic force as
+    /// `b += h F`, for the change in each (a released contact's go to zero).
+    pub fn apply_friction(&mut self, v0: &[Vec3], b: &mut [Vec3], a: &mut BlockSparse, h: f64) {
+        for c in &mut self.active {
+            let (drag, kinetic) = if c.live {
+                (c.drag, c.kinetic)
+            } else {
+                (0.0, Vec3::zeros())
+            };
+            let i = c.particle;
+            b[i] += h * (kinetic - c.applied_kinetic);
+            c.applied_kinetic = kinetic;
+            let change = drag - c.applied_drag;
+            if change == 0.0 {
+                continue;
+            }
+            c.applied_drag = drag;
             let p = Mat3::identity() - c.normal * c.normal.transpose();
-            let d = a.diag_slot(c.particle);
-            a.blocks_mut()[d] += (scale * c.drag) * p;
+            b[i] -= (h * change) * (p * (v0[i] - c.body_velocity));
+            let d = a.diag_slot(i);
+            a.blocks_mut()[d] += (h * change) * p;
         }
     }
 
     /// Reaction forces after an implicit solve of `A dv = b`: the constrained rows'
     /// residual `(A dv - b) / h`, what the body had to add for the prescribed velocities.
-    pub fn implicit_reactions(&mut self, a: &BlockSparse, b: &[Vec3], dv: impl Fn(usize) -> Vec3, h: f64) {
-        for c in &mut self.active {
+    /// The solve is exact only to its relative tolerance `accuracy`: a pull smaller than
+    /// ten times that of the row's own force is solver noise, not the body pulling.
+    pub fn implicit_reactions(
+        &mut self,
+        a: &BlockSparse,
+        b: &[Vec3],
+        dv: impl Fn(usize) -> Vec3,
+        h: f64,
+        accuracy: f64,
+    ) {
+        for c in self.active.iter_mut().filter(|c| c.live) {
             let i = c.particle;
+            c.pull_limit = c.pull_limit.max(10.0 * accuracy * b[i].norm() / h);
             let mut r = -b[i];
             for slot in a.row(i) {
                 r += a.blocks()[slot] * dv(a.col_of(slot));
@@ -249,7 +368,7 @@ impl ParticleContacts {
     /// pressure that can stop the sliding but never turn it back (Bridson et al. 2002); a
     /// drag of `mu p / SLIP_SPEED` would be far beyond an explicit step's stability.
     pub fn explicit_friction(&self, masses: &[f64], v_new: &mut [Vec3], h: f64) {
-        for c in self.active.iter().filter(|c| c.friction.is_finite()) {
+        for c in self.active.iter().filter(|c| c.live && c.friction.is_finite()) {
             let i = c.particle;
             let n = c.normal;
             let rel = v_new[i] - c.body_velocity;
@@ -265,9 +384,16 @@ impl ParticleContacts {
     /// speed back out of the kept velocity. Contacts released within the step are no
     /// longer active and keep their free motion.
     pub fn finish(&mut self, v_new: &mut [Vec3]) {
-        for c in &self.active {
+        for c in self.active.iter().filter(|c| c.live) {
             let state = &mut self.state[c.particle];
             state.pressure = c.reaction.dot(&c.normal).max(0.0);
+            if c.friction.is_finite() {
+                state.mode = if c.kinetic == Vec3::zeros() {
+                    ContactMode::Stick
+                } else {
+                    ContactMode::Slide
+                };
+            }
             v_new[c.particle] -= c.correction * c.normal;
         }
     }

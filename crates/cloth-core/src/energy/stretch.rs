@@ -32,10 +32,13 @@ impl<'a> ThreadLaw<'a> {
         ]
     }
 
+    /// The tension law from a strain of minus [`STRAIN_NOISE`] up: a sheet at rest has
+    /// strains of rounding size and either sign, and the stiffness must not depend on which
+    /// (mirror-image threads would get tension and compression stiffness at random).
     #[inline]
     pub fn response(&self, strain: f64) -> TensileResponse {
-        if strain >= 0.0 {
-            self.tension.extension(strain)
+        if strain >= -STRAIN_NOISE {
+            self.tension.extension(strain.max(0.0))
         } else {
             TensileResponse {
                 energy: 0.5 * self.compression * strain * strain,
@@ -45,6 +48,9 @@ impl<'a> ThreadLaw<'a> {
         }
     }
 }
+
+/// Strains closer to zero than this are rounding noise, m/m.
+pub const STRAIN_NOISE: f64 = 1e-12;
 
 /// Adds the stretch energy of one triangle along warp and weft.
 pub fn add_stretch(

@@ -21,7 +21,7 @@ impl Simulation {
             let c = &mut contacts.particles;
             c.explicit_reactions(masses, &self.v, &ws.force, &ws.v_new, h);
             // A contact the body would have to pull lets go: the particle keeps its free velocity.
-            for a in c.active.iter().filter(|a| a.reaction.dot(&a.normal) < 0.0) {
+            for a in c.active.iter().filter(|a| a.live && a.pulls()) {
                 let i = a.particle;
                 ws.v_new[i] = self.v[i] + ws.force[i] * (h / masses[i]);
             }

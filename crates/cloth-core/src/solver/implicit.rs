@@ -67,8 +67,9 @@ impl Simulation {
     }
 
     /// Writes the next state into the workspace. Contacts whose body would have to pull
-    /// are let go and the step solved again without them, up to [`RELEASE_PASSES`] times,
-    /// so a contact never holds the cloth to the body.
+    /// are let go, and new contacts given the friction of the pressure just found, and the
+    /// step solved again, up to [`RELEASE_PASSES`] times: a contact never holds the cloth to
+    /// the body, and friction acts from the first step of a contact.
     pub(super) fn implicit_step(&mut self, h: f64, velocity_accuracy: f64) -> Result<StepStats, String> {
         let start = Instant::now();
         let potential = self.assemble_system();
@@ -79,11 +80,6 @@ impl Simulation {
         for ((b, f), kv) in self.ws.b.iter_mut().zip(&self.ws.force).zip(&self.ws.hv) {
             *b = h * f - (h * h) * kv;
         }
-        if let Some(contacts) = &self.contacts {
-            // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
-            contacts.particles.add_friction_force(&self.v, &mut self.ws.b, h);
-            contacts.particles.add_friction_jacobian(&mut self.matrix, h);
-        }
         // A >= M, so a residual of v |m| leaves an RMS velocity error of about v.
         let abs_tolerance = velocity_accuracy * self.model.mass_norm();
         let mut stats = StepStats {
@@ -93,6 +89,12 @@ impl Simulation {
             ..Default::default()
         };
         for pass in 0..=RELEASE_PASSES {
+            if let Some(contacts) = &mut self.contacts {
+                // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
+                contacts
+                    .particles
+                    .apply_friction(&self.v, &mut self.ws.b, &mut self.matrix, h);
+            }
             let (s, ws) = (&self.settings, &mut self.ws);
             ws.filter.velocity_change(&self.v, &mut ws.z);
             ws.rhs.copy_from_slice(&ws.b);
@@ -120,10 +122,17 @@ impl Simulation {
             let Some(contacts) = &mut self.contacts else {
                 break;
             };
-            contacts
-                .particles
-                .implicit_reactions(&self.matrix, &ws.b, |j| ws.y[j] + ws.z[j], h);
-            if pass == RELEASE_PASSES || contacts.particles.release_pulling() == 0 {
+            contacts.particles.implicit_reactions(
+                &self.matrix,
+                &ws.b,
+                |j| ws.y[j] + ws.z[j],
+                h,
+                s.pcg.rel_tolerance,
+            );
+            let (y, z, v) = (&ws.y, &ws.z, &self.v);
+            let changed = contacts.particles.release_pulling()
+                + contacts.particles.settle_friction(|j| v[j] + y[j] + z[j]);
+            if pass == RELEASE_PASSES || changed == 0 {
                 break;
             }
             self.refill_filter(h)?;

@@ -122,11 +122,12 @@ impl SimulationBuilder {
         let (model, matrix) = ForceModel::new(&self.mesh, self.fabric);
         let contacts = self.collider.map(|collider| {
             let fabric = model.fabric();
-            let stiffness = fabric
-                .warp
-                .extension(0.0)
-                .slope
-                .max(fabric.weft.extension(0.0).slope);
+            let stiffness = 10.0
+                * fabric
+                    .warp
+                    .extension(0.0)
+                    .slope
+                    .max(fabric.weft.extension(0.0).slope);
             let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness);
             c.particles
                 .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
@@ -300,7 +301,9 @@ impl Simulation {
             self.ws.pin_targets.push(target);
         }
         if let Some(contacts) = &mut self.contacts {
-            contacts.particles.constrain(h, &self.v, &self.pinned);
+            contacts
+                .particles
+                .constrain(h, &self.v, self.model.masses(), &self.pinned);
             contacts.detect_features(self.time + h, self.mesh.triangles(), &self.x);
         }
         self.refill_filter(h).map_err(|reason| SimError::Solver {
@@ -454,7 +457,7 @@ impl Simulation {
             return;
         };
         let start = Instant::now();
-        stats.contacts = contacts.particles.active.len();
+        stats.contacts = contacts.particles.active.iter().filter(|c| c.live).count();
         stats.feature_contacts = contacts.feature_contacts();
         let counts = contacts.finish_step(
             self.time,
