@@ -1,8 +1,7 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
-use crate::collide::{Bodies, Body, TriSurface};
+use crate::collide::{Body, TriSurface};
 use cloth_core::{SimulationBuilder, Vec3};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
-use std::sync::Arc;
 
 /// A coarse sheet dropped onto a cube standing on one corner, so the top corner meets the
 /// middle of a cloth triangle, not a particle.
@@ -53,7 +52,6 @@ impl CubeCorner {
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?
             .with_sharp_angle(self.sharp_angle)?;
-        let bodies = Arc::new(Bodies::new(vec![body]));
         // Shift the sheet by a third of a cell so the corner is inside a triangle.
         let cell = self.sheet_size / (self.particles_per_side - 1) as f64;
         let centre = Vec3::new(cell / 3.0, cell / 5.0, self.thickness + self.drop_height);
@@ -64,10 +62,9 @@ impl CubeCorner {
             Vec3::x(),
             Vec3::y(),
         )?;
-        let simulation = SimulationBuilder::new(mesh, scene_fabric())
-            .time_step(self.time_step)
-            .collider(bodies.clone())
-            .build()?;
-        Ok(Scene { simulation, bodies })
+        Scene::new(
+            body,
+            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
+        )
     }
 }

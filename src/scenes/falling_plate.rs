@@ -1,7 +1,6 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
-use crate::collide::{Bodies, Body, TriSurface};
+use crate::collide::{Body, TriSurface};
 use cloth_core::{SimulationBuilder, Vec3};
-use std::sync::Arc;
 
 /// A sheet thrown down fast onto a thin plate: the tunnelling test.
 #[derive(Debug, Clone)]
@@ -41,7 +40,6 @@ impl FallingPlate {
         let body = Body::new("plate", plate)
             .with_pose(pose)?
             .with_thickness(self.thickness)?;
-        let bodies = Arc::new(Bodies::new(vec![body]));
         let centre = Vec3::new(0.0, 0.0, self.drop_height);
         let mesh = square_sheet(
             self.particles_per_side,
@@ -51,11 +49,11 @@ impl FallingPlate {
             Vec3::y(),
         )?;
         let n = mesh.vertex_count();
-        let simulation = SimulationBuilder::new(mesh, scene_fabric())
-            .time_step(self.time_step)
-            .velocities(vec![Vec3::new(0.0, 0.0, -self.speed); n])
-            .collider(bodies.clone())
-            .build()?;
-        Ok(Scene { simulation, bodies })
+        Scene::new(
+            body,
+            SimulationBuilder::new(mesh, scene_fabric())
+                .time_step(self.time_step)
+                .velocities(vec![Vec3::new(0.0, 0.0, -self.speed); n]),
+        )
     }
 }

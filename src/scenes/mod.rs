@@ -15,8 +15,10 @@ pub use tablecloth::Tablecloth;
 pub use tilted_plane::TiltedPlane;
 pub use turning_sphere::TurningSphere;
 
-use crate::collide::{Bodies, BodyError, SurfaceError};
-use cloth_core::{ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Simulation, Vec3};
+use crate::collide::{Bodies, Body, BodyError, SurfaceError};
+use cloth_core::{
+    ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Simulation, SimulationBuilder, Vec3,
+};
 use std::sync::Arc;
 
 /// A simulation with the bodies it collides with (kept to measure penetration).
@@ -27,6 +29,13 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// A scene of one body: the cloth of `simulation` collides with it.
+    pub fn new(body: Body, simulation: SimulationBuilder) -> Result<Self, SceneError> {
+        let bodies = Arc::new(Bodies::new(vec![body]));
+        let simulation = simulation.collider(bodies.clone()).build()?;
+        Ok(Self { simulation, bodies })
+    }
+
     /// How deep the deepest particle is inside a body now, m (0 when none is).
     pub fn deepest_penetration(&self) -> f64 {
         self.bodies

@@ -1,7 +1,6 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
-use crate::collide::{Bodies, Body, TriSurface};
+use crate::collide::{Body, TriSurface};
 use cloth_core::{SimulationBuilder, Vec3};
-use std::sync::Arc;
 
 /// A square sheet dropped flat onto a sphere at the origin, centred over it.
 #[derive(Debug, Clone)]
@@ -41,7 +40,6 @@ impl SphereDrop {
         let body = Body::new("sphere", sphere)
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
-        let bodies = Arc::new(Bodies::new(vec![body]));
         let top = Vec3::new(0.0, 0.0, self.radius + self.thickness + self.drop_height);
         let mesh = square_sheet(
             self.particles_per_side,
@@ -50,10 +48,9 @@ impl SphereDrop {
             Vec3::x(),
             Vec3::y(),
         )?;
-        let simulation = SimulationBuilder::new(mesh, scene_fabric())
-            .time_step(self.time_step)
-            .collider(bodies.clone())
-            .build()?;
-        Ok(Scene { simulation, bodies })
+        Scene::new(
+            body,
+            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
+        )
     }
 }

@@ -1,7 +1,6 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
-use crate::collide::{Bodies, Body, TriSurface};
+use crate::collide::{Body, TriSurface};
 use cloth_core::{SimulationBuilder, Vec3};
-use std::sync::Arc;
 
 /// A square tablecloth dropped onto a square table, centred and aligned with it.
 #[derive(Debug, Clone)]
@@ -45,7 +44,6 @@ impl Tablecloth {
         let body = Body::new("table", table)
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
-        let bodies = Arc::new(Bodies::new(vec![body]));
         let centre = Vec3::new(0.0, 0.0, self.table_height + self.thickness + self.drop_height);
         let mesh = square_sheet(
             self.particles_per_side,
@@ -54,10 +52,9 @@ impl Tablecloth {
             Vec3::x(),
             Vec3::y(),
         )?;
-        let simulation = SimulationBuilder::new(mesh, scene_fabric())
-            .time_step(self.time_step)
-            .collider(bodies.clone())
-            .build()?;
-        Ok(Scene { simulation, bodies })
+        Scene::new(
+            body,
+            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
+        )
     }
 }

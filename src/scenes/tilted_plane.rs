@@ -1,8 +1,7 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
-use crate::collide::{Bodies, Body, TriSurface};
+use crate::collide::{Body, TriSurface};
 use cloth_core::{SimulationBuilder, Vec3};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
-use std::sync::Arc;
 
 /// A sheet lying on a large plate tilted by `angle` about the x axis (downhill is -y).
 #[derive(Debug, Clone)]
@@ -50,7 +49,6 @@ impl TiltedPlane {
             .with_pose(pose)?
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
-        let bodies = Arc::new(Bodies::new(vec![body]));
         let (u, v) = (self.tilt() * Vec3::x(), self.tilt() * Vec3::y());
         let mesh = square_sheet(
             self.particles_per_side,
@@ -59,10 +57,9 @@ impl TiltedPlane {
             u,
             v,
         )?;
-        let simulation = SimulationBuilder::new(mesh, scene_fabric().with_drag(0.0))
-            .time_step(self.time_step)
-            .collider(bodies.clone())
-            .build()?;
-        Ok(Scene { simulation, bodies })
+        Scene::new(
+            body,
+            SimulationBuilder::new(mesh, scene_fabric().with_drag(0.0)).time_step(self.time_step),
+        )
     }
 }

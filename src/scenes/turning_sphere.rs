@@ -1,8 +1,7 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
-use crate::collide::{Bodies, Body, Motion, TriSurface};
+use crate::collide::{Body, Motion, TriSurface};
 use cloth_core::{SimulationBuilder, Vec3};
 use nalgebra::{Isometry3, Unit};
-use std::sync::Arc;
 
 /// A small sheet lying on top of a sphere that turns about the vertical axis: friction
 /// makes the sheet turn with it.
@@ -44,7 +43,6 @@ impl TurningSphere {
             })
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
-        let bodies = Arc::new(Bodies::new(vec![body]));
         let top = Vec3::new(0.0, 0.0, self.radius + self.thickness);
         let mesh = square_sheet(
             self.particles_per_side,
@@ -53,10 +51,9 @@ impl TurningSphere {
             Vec3::x(),
             Vec3::y(),
         )?;
-        let simulation = SimulationBuilder::new(mesh, scene_fabric())
-            .time_step(self.time_step)
-            .collider(bodies.clone())
-            .build()?;
-        Ok(Scene { simulation, bodies })
+        Scene::new(
+            body,
+            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
+        )
     }
 }

@@ -36,7 +36,7 @@ impl TriSurface {
             vertices.extend(
                 mesh.positions
                     .chunks_exact(3)
-                    .map(|c| Vec3::new(c[0].into(), c[1].into(), c[2].into())),
+                    .map(|c| Vec3::new(c[0], c[1], c[2])),
             );
             triangles.extend(
                 mesh.indices

@@ -55,7 +55,6 @@ pub(crate) struct ParticleState {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ActiveContact {
     pub constraint: Constraint,
-    pub particle: usize,
     pub normal: Vec3,
     pub body_velocity: Vec3,
     /// Normal speed that carries the particle back out towards the thickness. It moves the
@@ -85,6 +84,9 @@ pub(crate) struct ActiveContact {
 }
 
 impl ActiveContact {
+    pub fn particle(&self) -> usize {
+        self.constraint.particle
+    }
     /// Coulomb friction for sticking (drag regularised at [`SLIP_SPEED`]) or for sliding
     /// along `tangential` (the relative tangential velocity).
     fn set_friction(&mut self, mode: ContactMode, tangential: &Vec3) {
@@ -213,7 +215,6 @@ impl ParticleContacts {
                     kind,
                     velocity,
                 },
-                particle: i,
                 normal: n,
                 body_velocity: p.velocity,
                 correction,
@@ -247,7 +248,7 @@ impl ParticleContacts {
     pub fn release_pulling(&mut self) -> usize {
         let mut released = 0;
         for c in self.active.iter_mut().filter(|c| c.live && c.pulls()) {
-            let s = &mut self.state[c.particle];
+            let s = &mut self.state[c.particle()];
             s.released = true;
             s.mode = ContactMode::Free;
             s.pressure = 0.0;
@@ -268,7 +269,7 @@ impl ParticleContacts {
             .iter_mut()
             .filter(|c| c.live && c.friction.is_finite())
         {
-            let rel = v_new(c.particle) - c.body_velocity;
+            let rel = v_new(c.particle()) - c.body_velocity;
             let tangential = rel - rel.dot(&c.normal) * c.normal;
             let mut mode = if c.kinetic == Vec3::zeros() {
                 ContactMode::Stick
@@ -310,7 +311,7 @@ impl ParticleContacts {
             } else {
                 (0.0, Vec3::zeros())
             };
-            let i = c.particle;
+            let i = c.particle();
             b[i] += h * (kinetic - c.applied_kinetic);
             c.applied_kinetic = kinetic;
             let change = drag - c.applied_drag;
@@ -338,7 +339,7 @@ impl ParticleContacts {
         accuracy: f64,
     ) {
         for c in self.active.iter_mut().filter(|c| c.live) {
-            let i = c.particle;
+            let i = c.particle();
             c.pull_limit = c.pull_limit.max(10.0 * accuracy * b[i].norm() / h);
             let mut r = -b[i];
             for slot in a.row(i) {
@@ -359,7 +360,7 @@ impl ParticleContacts {
         h: f64,
     ) {
         for c in &mut self.active {
-            let i = c.particle;
+            let i = c.particle();
             c.reaction = masses[i] * (v_new[i] - v0[i]) / h - force[i];
         }
     }
@@ -369,7 +370,7 @@ impl ParticleContacts {
     /// drag of `mu p / SLIP_SPEED` would be far beyond an explicit step's stability.
     pub fn explicit_friction(&self, masses: &[f64], v_new: &mut [Vec3], h: f64) {
         for c in self.active.iter().filter(|c| c.live && c.friction.is_finite()) {
-            let i = c.particle;
+            let i = c.particle();
             let n = c.normal;
             let rel = v_new[i] - c.body_velocity;
             let tangential = rel - rel.dot(&n) * n;
@@ -385,7 +386,7 @@ impl ParticleContacts {
     /// longer active and keep their free motion.
     pub fn finish(&mut self, v_new: &mut [Vec3]) {
         for c in self.active.iter().filter(|c| c.live) {
-            let state = &mut self.state[c.particle];
+            let state = &mut self.state[c.particle()];
             state.pressure = c.reaction.dot(&c.normal).max(0.0);
             if c.friction.is_finite() {
                 state.mode = if c.kinetic == Vec3::zeros() {
@@ -394,7 +395,7 @@ impl ParticleContacts {
                     ContactMode::Slide
                 };
             }
-            v_new[c.particle] -= c.correction * c.normal;
+            v_new[c.particle()] -= c.correction * c.normal;
         }
     }
 

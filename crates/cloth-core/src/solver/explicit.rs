@@ -22,7 +22,7 @@ impl Simulation {
             c.explicit_reactions(masses, &self.v, &ws.force, &ws.v_new, h);
             // A contact the body would have to pull lets go: the particle keeps its free velocity.
             for a in c.active.iter().filter(|a| a.live && a.pulls()) {
-                let i = a.particle;
+                let i = a.particle();
                 ws.v_new[i] = self.v[i] + ws.force[i] * (h / masses[i]);
             }
             released = c.release_pulling();
