@@ -8,7 +8,7 @@ pub struct SphereDrop {
     pub particles_per_side: usize,
     pub sheet_size: f64,
     pub radius: f64,
-    /// Longitudes of the UV sphere (a multiple of 4 keeps the scene's symmetries).
+    /// Longitudes of the UV sphere (a multiple of 8 keeps the scene's symmetries).
     pub segments: usize,
     pub rings: usize,
     /// Height of the sheet above the sphere's top at the start, m.

@@ -40,7 +40,7 @@ impl TurningSphere {
                 center: Vec3::zeros(),
                 axis: Unit::new_normalize(Vec3::z()),
                 rate: self.rate,
-            })
+            })?
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
         let top = Vec3::new(0.0, 0.0, self.radius + self.thickness);

@@ -17,6 +17,10 @@ pub const DEFAULT_FRICTION: f64 = 0.5;
 /// Default fold angle above which an edge counts as sharp, rad (30 degrees).
 pub const DEFAULT_SHARP_ANGLE: f64 = std::f64::consts::PI / 6.0;
 
+fn finite<'a>(values: impl IntoIterator<Item = &'a f64>) -> bool {
+    values.into_iter().all(|c| c.is_finite())
+}
+
 /// A body parameter out of range.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("body `{body}`: `{name}` = {value} is invalid: {expected}")]
@@ -100,21 +104,41 @@ impl Body {
     }
 
     /// Places the body (static).
-    pub fn with_pose(mut self, pose: Isometry3<f64>) -> Result<Self, BodyError> {
-        let finite = pose
-            .translation
-            .vector
-            .iter()
-            .chain(pose.rotation.coords.iter())
-            .all(|c| c.is_finite());
-        self.check(finite, "pose", f64::NAN, "finite translation and rotation")?;
-        self.motion = Motion::Static(pose);
-        Ok(self)
+    pub fn with_pose(self, pose: Isometry3<f64>) -> Result<Self, BodyError> {
+        self.with_motion(Motion::Static(pose))
     }
-    /// Makes the body move.
-    pub fn with_motion(mut self, motion: Motion) -> Self {
+    /// Makes the body move. A path's poses are checked as the simulation asks for them.
+    pub fn with_motion(mut self, motion: Motion) -> Result<Self, BodyError> {
+        let pose_ok =
+            |p: &Isometry3<f64>| finite(p.translation.vector.iter().chain(p.rotation.coords.iter()));
+        match &motion {
+            Motion::Static(pose) => {
+                self.check(pose_ok(pose), "pose", f64::NAN, "finite translation and rotation")?
+            }
+            Motion::Spin {
+                pose,
+                center,
+                axis,
+                rate,
+            } => {
+                self.check(pose_ok(pose), "pose", f64::NAN, "finite translation and rotation")?;
+                self.check(finite(center.iter()), "center", f64::NAN, "a finite point")?;
+                self.check(finite(axis.iter()), "axis", f64::NAN, "a finite unit vector")?;
+                self.check(rate.is_finite(), "rate", *rate, "a finite rate in rad/s")?;
+            }
+            Motion::Linear { pose, velocity } => {
+                self.check(pose_ok(pose), "pose", f64::NAN, "finite translation and rotation")?;
+                self.check(
+                    finite(velocity.iter()),
+                    "velocity",
+                    f64::NAN,
+                    "a finite velocity in m/s",
+                )?;
+            }
+            Motion::Path(_) => {}
+        }
         self.motion = motion;
-        self
+        Ok(self)
     }
     /// Contact thickness, m: the cloth is kept this far from the surface.
     pub fn with_thickness(mut self, thickness: f64) -> Result<Self, BodyError> {

@@ -1,0 +1,98 @@
+//! Bodies: parameter errors that name the body and the field, poses and motion.
+
+use cloth_collide::{Body, BodyError, Motion, TriSurface};
+use cloth_core::Vec3;
+use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion};
+
+fn ball() -> Body {
+    Body::new("ball", TriSurface::icosphere(0.5, 2).unwrap())
+}
+
+/// The error names the body and the field, and the message says both.
+fn assert_names(err: BodyError, field: &str) {
+    assert_eq!(err.body, "ball");
+    assert_eq!(err.name, field);
+    let message = err.to_string();
+    assert!(message.contains("`ball`"), "{message}");
+    assert!(message.contains(&format!("`{field}`")), "{message}");
+}
+
+#[test]
+fn thickness_must_be_positive_and_finite() {
+    for bad in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
+        assert_names(ball().with_thickness(bad).unwrap_err(), "thickness");
+    }
+    assert_eq!(ball().with_thickness(2e-3).unwrap().thickness(), 2e-3);
+}
+
+#[test]
+fn friction_must_be_non_negative_and_may_be_infinite() {
+    for bad in [-0.1, f64::NAN, f64::NEG_INFINITY] {
+        assert_names(ball().with_friction(bad).unwrap_err(), "friction");
+    }
+    assert_eq!(ball().with_friction(0.0).unwrap().friction(), 0.0);
+    assert_eq!(
+        ball().with_friction(f64::INFINITY).unwrap().friction(),
+        f64::INFINITY
+    );
+}
+
+#[test]
+fn sharp_angle_must_be_positive() {
+    for bad in [0.0, -0.5, f64::NAN] {
+        assert_names(ball().with_sharp_angle(bad).unwrap_err(), "sharp_angle");
+    }
+}
+
+#[test]
+fn poses_and_motions_must_be_finite() {
+    let bad_pose = Isometry3::from_parts(Translation3::new(f64::NAN, 0.0, 0.0), UnitQuaternion::identity());
+    assert_names(ball().with_pose(bad_pose).unwrap_err(), "pose");
+    let spin = |rate: f64, center: Vec3| Motion::Spin {
+        pose: Isometry3::identity(),
+        center,
+        axis: Unit::new_normalize(Vec3::z()),
+        rate,
+    };
+    assert_names(
+        ball().with_motion(spin(f64::NAN, Vec3::zeros())).unwrap_err(),
+        "rate",
+    );
+    assert_names(
+        ball()
+            .with_motion(spin(1.0, Vec3::new(0.0, f64::INFINITY, 0.0)))
+            .unwrap_err(),
+        "center",
+    );
+    let linear = Motion::Linear {
+        pose: Isometry3::identity(),
+        velocity: Vec3::new(0.0, 0.0, f64::NAN),
+    };
+    assert_names(ball().with_motion(linear).unwrap_err(), "velocity");
+}
+
+#[test]
+fn a_posed_body_is_where_its_pose_puts_it() {
+    let pose = Isometry3::translation(1.0, 2.0, 3.0);
+    let body = ball().with_pose(pose).unwrap();
+    let centre = Vec3::new(1.0, 2.0, 3.0);
+    // The icosphere's vertices are on the sphere, its faces inside it.
+    let d = body.signed_distance(0.0, &centre);
+    assert!((-0.5..-0.45).contains(&d), "centre at {d}");
+    let outside = body.signed_distance(0.0, &(centre + Vec3::new(0.0, 0.0, 1.0)));
+    assert!((0.5..0.55).contains(&outside), "1 m above the centre: {outside}");
+}
+
+#[test]
+fn a_moving_body_moves_with_its_motion() {
+    let body = ball()
+        .with_motion(Motion::Linear {
+            pose: Isometry3::identity(),
+            velocity: Vec3::new(0.0, 0.0, 2.0),
+        })
+        .unwrap();
+    let probe = Vec3::new(0.0, 0.0, 2.0);
+    // At t = 1 the centre has reached the probe.
+    assert!(body.signed_distance(0.0, &probe) > 1.4);
+    assert!(body.signed_distance(1.0, &probe) < -0.45);
+}
