@@ -216,11 +216,10 @@ fn cloth_height_over_origin(scene: &Scene) -> Option<f64> {
 
 /// Steps the corner scene to rest (or `steps`), checking particles against the cube every
 /// step; returns the lowest height of the cloth over the corner and the height at the end.
-fn corner_clearance(setup: &CubeCorner, steps: u64) -> (f64, f64, StopReason) {
+fn corner_clearance(setup: &CubeCorner, steps: u64) -> (f64, f64) {
     let mut scene = setup.build().unwrap();
     let bodies = scene.bodies.clone();
     let (mut lowest, mut calm) = (f64::INFINITY, 0);
-    let mut reason = StopReason::StepLimit;
     for _ in 0..steps {
         let stats = scene.simulation.step().unwrap();
         let (depth, _) = bodies.deepest_inside(scene.simulation.time(), scene.simulation.positions());
@@ -238,12 +237,11 @@ fn corner_clearance(setup: &CubeCorner, steps: u64) -> (f64, f64, StopReason) {
             0
         };
         if calm >= 10 {
-            reason = StopReason::AtRest;
             break;
         }
     }
     let end = cloth_height_over_origin(&scene).unwrap_or(f64::NAN);
-    (lowest, end, reason)
+    (lowest, end)
 }
 
 #[test]
@@ -251,8 +249,8 @@ fn a_cube_corner_does_not_poke_through_a_coarse_sheet() {
     let setup = CubeCorner::default();
     // The sheet settles over the corner within a few seconds, but its flaps hanging over
     // the cube's edges keep creeping at about 1 mm/s (see the contact issue's note), so
-    // this runs a fixed 12.5 s rather than to rest.
-    let (lowest, end, _) = corner_clearance(&setup, 1500);
+    // this may run the whole 12.5 s rather than stop at rest.
+    let (lowest, end) = corner_clearance(&setup, 1500);
     // The corner is at the origin: the cloth over it never goes below it, and rests on it
     // at the contact thickness (less the give of the feature spring under the sheet's weight).
     assert!(
@@ -271,7 +269,7 @@ fn a_cube_corner_does_not_poke_through_a_coarse_sheet() {
         sharp_angle: 4.0,
         ..CubeCorner::default()
     };
-    let (lowest, _, _) = corner_clearance(&particles_only, 300);
+    let (lowest, _) = corner_clearance(&particles_only, 300);
     assert!(lowest < 0.0, "particles alone kept the corner out ({lowest} m)");
 }
 

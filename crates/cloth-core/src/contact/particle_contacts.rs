@@ -57,9 +57,9 @@ pub(crate) struct ActiveContact {
     pub constraint: Constraint,
     pub normal: Vec3,
     pub body_velocity: Vec3,
-    /// The part of the prescribed normal speed that only corrects the position (back out
-    /// towards the thickness, or down onto it): it is not kept as velocity, so it adds no
-    /// energy.
+    /// Normal speed relative to the body that corrects the position (back out towards the
+    /// thickness, or down onto it). It moves the particle but is not kept as velocity, so
+    /// it adds no energy.
     pub correction: f64,
     /// Coulomb coefficient (infinite: no slip).
     pub friction: f64,
@@ -193,21 +193,20 @@ impl ParticleContacts {
             }
             s.released = false;
             let fresh = s.mode == ContactMode::Free;
-            // The prescribed normal speed (relative to the body), and the part of it that is
-            // not kept. A particle inside the layer is carried back out over a few steps.
-            // One above it keeps its speed towards the body, but lands on the layer rather
-            // than crossing into it, and then stops: stopping it at once would leave it
-            // hanging above the body, to fall again and bounce in and out of contact.
-            let target = if p.gap() <= 0.0 {
+            // The normal speed prescribed relative to the body, not kept after the step. A
+            // particle inside the layer is carried back out over a few steps. One above it
+            // keeps its speed towards the body, but lands on the layer rather than crossing
+            // into it, and then stops: stopping it at once would leave it hanging above the
+            // body, to fall again and bounce in and out of contact.
+            let correction = if p.gap() <= 0.0 {
                 -CORRECTION_RATE * p.gap() / h
             } else {
-                relative.dot(&n).clamp(-p.gap() / h, 0.0)
+                relative.dot(&n).max(-p.gap() / h).min(0.0)
             };
-            let correction = target;
             let sliding = (relative - relative.dot(&n) * n).norm();
             let (kind, velocity) = if p.friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
-                (ConstraintKind::Fixed, p.velocity + target * n)
+                (ConstraintKind::Fixed, p.velocity + correction * n)
             } else {
                 s.mode = if sliding > SLIP_SPEED {
                     ContactMode::Slide
@@ -216,7 +215,7 @@ impl ParticleContacts {
                 };
                 (
                     ConstraintKind::Plane { normal: n },
-                    (n.dot(&p.velocity) + target) * n,
+                    (n.dot(&p.velocity) + correction) * n,
                 )
             };
             let tangential = relative - relative.dot(&n) * n;
