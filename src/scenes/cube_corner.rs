@@ -1,6 +1,6 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use super::{horizontal_sheet, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::Vec3;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 
 /// A coarse sheet dropped onto a cube standing on one corner, so the top corner meets the
@@ -55,16 +55,7 @@ impl CubeCorner {
         // Shift the sheet by a third of a cell so the corner is inside a triangle.
         let cell = self.sheet_size / (self.particles_per_side - 1) as f64;
         let centre = Vec3::new(cell / 3.0, cell / 5.0, self.thickness + self.drop_height);
-        let mesh = square_sheet(
-            self.particles_per_side,
-            self.sheet_size,
-            centre,
-            Vec3::x(),
-            Vec3::y(),
-        )?;
-        Scene::new(
-            body,
-            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
-        )
+        let sheet = horizontal_sheet(self.particles_per_side, self.sheet_size, centre, self.time_step)?;
+        Scene::new(body, sheet)
     }
 }

@@ -1,6 +1,6 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use super::{horizontal_sheet, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::Vec3;
 
 /// A sheet thrown down fast onto a thin plate: the tunnelling test.
 #[derive(Debug, Clone)]
@@ -41,19 +41,15 @@ impl FallingPlate {
             .with_pose(pose)?
             .with_thickness(self.thickness)?;
         let centre = Vec3::new(0.0, 0.0, self.drop_height);
-        let mesh = square_sheet(
-            self.particles_per_side,
-            self.sheet_size,
-            centre,
-            Vec3::x(),
-            Vec3::y(),
-        )?;
-        let n = mesh.vertex_count();
-        Scene::new(
-            body,
-            SimulationBuilder::new(mesh, scene_fabric())
-                .time_step(self.time_step)
-                .velocities(vec![Vec3::new(0.0, 0.0, -self.speed); n]),
-        )
+        let n = self.particles_per_side;
+        let sheet = horizontal_sheet(n, self.sheet_size, centre, self.time_step)?.velocities(vec![
+            Vec3::new(
+                0.0,
+                0.0,
+                -self.speed
+            );
+            n * n
+        ]);
+        Scene::new(body, sheet)
     }
 }

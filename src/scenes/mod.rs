@@ -62,6 +62,18 @@ pub fn scene_fabric() -> Fabric {
     Fabric::cotton_like().with_damping(2e-3).with_drag(0.05)
 }
 
+/// A horizontal square sheet of the scene fabric stepped at `time_step`: `n` x `n`
+/// particles, `size` wide, centred on `centre`.
+pub(crate) fn horizontal_sheet(
+    n: usize,
+    size: f64,
+    centre: Vec3,
+    time_step: f64,
+) -> Result<SimulationBuilder, MeshError> {
+    let mesh = square_sheet(n, size, centre, Vec3::x(), Vec3::y())?;
+    Ok(SimulationBuilder::new(mesh, scene_fabric()).time_step(time_step))
+}
+
 /// A square sheet of `n` x `n` particles, `size` wide, centred on `centre`, spanned by the
 /// unit vectors `u` and `v` (alternating diagonals: the square's symmetries).
 pub(crate) fn square_sheet(

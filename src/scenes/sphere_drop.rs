@@ -1,6 +1,6 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use super::{horizontal_sheet, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::Vec3;
 
 /// A square sheet dropped flat onto a sphere at the origin, centred over it.
 #[derive(Debug, Clone)]
@@ -41,16 +41,7 @@ impl SphereDrop {
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
         let top = Vec3::new(0.0, 0.0, self.radius + self.thickness + self.drop_height);
-        let mesh = square_sheet(
-            self.particles_per_side,
-            self.sheet_size,
-            top,
-            Vec3::x(),
-            Vec3::y(),
-        )?;
-        Scene::new(
-            body,
-            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
-        )
+        let sheet = horizontal_sheet(self.particles_per_side, self.sheet_size, top, self.time_step)?;
+        Scene::new(body, sheet)
     }
 }

@@ -1,6 +1,6 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use super::{horizontal_sheet, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::Vec3;
 
 /// A square tablecloth dropped onto a square table, centred and aligned with it.
 #[derive(Debug, Clone)]
@@ -45,16 +45,7 @@ impl Tablecloth {
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
         let centre = Vec3::new(0.0, 0.0, self.table_height + self.thickness + self.drop_height);
-        let mesh = square_sheet(
-            self.particles_per_side,
-            self.cloth_size,
-            centre,
-            Vec3::x(),
-            Vec3::y(),
-        )?;
-        Scene::new(
-            body,
-            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
-        )
+        let sheet = horizontal_sheet(self.particles_per_side, self.cloth_size, centre, self.time_step)?;
+        Scene::new(body, sheet)
     }
 }

@@ -1,6 +1,6 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use super::{horizontal_sheet, Scene, SceneError};
 use crate::collide::{Body, Motion, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::Vec3;
 use nalgebra::{Isometry3, Unit};
 
 /// A small sheet lying on top of a sphere that turns about the vertical axis: friction
@@ -44,16 +44,7 @@ impl TurningSphere {
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
         let top = Vec3::new(0.0, 0.0, self.radius + self.thickness);
-        let mesh = square_sheet(
-            self.particles_per_side,
-            self.sheet_size,
-            top,
-            Vec3::x(),
-            Vec3::y(),
-        )?;
-        Scene::new(
-            body,
-            SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
-        )
+        let sheet = horizontal_sheet(self.particles_per_side, self.sheet_size, top, self.time_step)?;
+        Scene::new(body, sheet)
     }
 }

@@ -203,7 +203,8 @@ impl ParticleContacts {
             } else {
                 relative.dot(&n).max(-p.gap() / h).min(0.0)
             };
-            let sliding = (relative - relative.dot(&n) * n).norm();
+            let tangential = relative - relative.dot(&n) * n;
+            let sliding = tangential.norm();
             let (kind, velocity) = if p.friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
                 (ConstraintKind::Fixed, p.velocity + correction * n)
@@ -218,7 +219,6 @@ impl ParticleContacts {
                     (n.dot(&p.velocity) + correction) * n,
                 )
             };
-            let tangential = relative - relative.dot(&n) * n;
             self.active.push(ActiveContact {
                 constraint: Constraint {
                     particle: i,
