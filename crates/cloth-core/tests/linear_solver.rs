@@ -1,6 +1,11 @@
-//! The block-sparse PCG against a direct sparse Cholesky, and the constraint filter.
+//! The block-sparse PCG against a direct sparse Cholesky, with each preconditioner, and
+//! the constraint filter.
 
-use cloth_core::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg, PcgSettings};
+const PRECONDITIONERS: [Preconditioner; 2] = [Preconditioner::BlockJacobi, Preconditioner::Multigrid];
+
+use cloth_core::linalg::{
+    BlockSparse, Constraint, ConstraintKind, Filter, Pcg, PcgSettings, Preconditioner,
+};
 use cloth_core::{Mat3, Vec3};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
@@ -75,24 +80,31 @@ fn pcg_agrees_with_sparse_cholesky() {
             .map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0)))
             .collect();
         let direct = direct_solve(&a, &b);
-        for parallel in [false, true] {
+        for (parallel, preconditioner) in [false, true].into_iter().flat_map(|p| PRECONDITIONERS.map(|c| (p, c))) {
             let mut x = vec![Vec3::zeros(); n];
             let settings = PcgSettings {
                 rel_tolerance: 1e-12,
                 max_iterations: 20 * 3 * n,
+                preconditioner,
             };
             let out = Pcg::new(n)
                 .solve(&a, &Filter::new(n, 0), &b, &mut x, &settings, 0.0, parallel)
                 .unwrap();
             assert!(out.converged && out.rel_residual <= 1e-12, "{out:?}");
             let err = max_diff(&x, &direct) / max_norm(&direct);
-            assert!(err < 1e-8, "n = {n}: PCG differs from Cholesky by {err:e}");
+            assert!(err < 1e-8, "n = {n}, {preconditioner:?}: PCG differs from Cholesky by {err:e}");
         }
     }
 }
 
 #[test]
 fn pcg_reports_an_iteration_limit_without_failing() {
+    for preconditioner in PRECONDITIONERS {
+        iteration_limit(preconditioner);
+    }
+}
+
+fn iteration_limit(preconditioner: Preconditioner) {
     let mut rng = StdRng::seed_from_u64(12);
     let a = random_spd(200, 800, &mut rng);
     let b = vec![Vec3::new(1.0, -1.0, 0.5); 200];
@@ -106,6 +118,7 @@ fn pcg_reports_an_iteration_limit_without_failing() {
             &PcgSettings {
                 rel_tolerance: 1e-14,
                 max_iterations: 3,
+                preconditioner,
             },
             0.0,
             false,
@@ -176,17 +189,35 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
     a.mul(&z, &mut az, false);
     let mut rhs: Vec<Vec3> = b.iter().zip(&az).map(|(b, az)| b - az).collect();
     filter.project(&mut rhs);
+    for preconditioner in PRECONDITIONERS {
+        check_filtered_solve(&a, &filter, &constraints, &rhs, &b, &z, &v0, preconditioner);
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn check_filtered_solve(
+    a: &BlockSparse,
+    filter: &Filter,
+    constraints: &[Constraint],
+    rhs: &[Vec3],
+    b: &[Vec3],
+    z: &[Vec3],
+    v0: &[Vec3],
+    preconditioner: Preconditioner,
+) {
+    let n = a.n();
     // PCG applies the filter inside its operator; the assembled matrix is left untouched.
     let mut y = vec![Vec3::zeros(); n];
     let out = Pcg::new(n)
         .solve(
-            &a,
-            &filter,
-            &rhs,
+            a,
+            filter,
+            rhs,
             &mut y,
             &PcgSettings {
                 rel_tolerance: 1e-13,
                 max_iterations: 5000,
+                preconditioner,
             },
             0.0,
             true,
@@ -194,11 +225,11 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
         .unwrap();
     assert!(out.converged);
     filter.project(&mut y);
-    let dv: Vec<Vec3> = y.iter().zip(&z).map(|(y, z)| y + z).collect();
+    let dv: Vec<Vec3> = y.iter().zip(z).map(|(y, z)| y + z).collect();
     let v1: Vec<Vec3> = v0.iter().zip(&dv).map(|(v, d)| v + d).collect();
 
     // Constrained components are exactly the prescribed ones.
-    for c in &constraints {
+    for c in constraints {
         let s = c.kind.free_projection();
         let held = (Mat3::identity() - s) * (v1[c.particle] - c.velocity);
         assert!(
@@ -210,11 +241,11 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
     // Free components satisfy the equations: S (A dv - b) = 0.
     let mut adv = vec![Vec3::zeros(); n];
     a.mul(&dv, &mut adv, false);
-    let mut residual: Vec<Vec3> = adv.iter().zip(&b).map(|(l, r)| l - r).collect();
+    let mut residual: Vec<Vec3> = adv.iter().zip(b).map(|(l, r)| l - r).collect();
     filter.project(&mut residual);
     assert!(
-        max_norm(&residual) < 1e-9 * max_norm(&b),
-        "free residual {}",
+        max_norm(&residual) < 1e-9 * max_norm(b),
+        "{preconditioner:?}: free residual {}",
         max_norm(&residual)
     );
 }

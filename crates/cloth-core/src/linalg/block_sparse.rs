@@ -5,6 +5,7 @@
 //! thread count.
 
 use crate::{Mat3, Vec3};
+use super::row_chunks::for_each_row_chunk;
 use rayon::prelude::*;
 
 /// Rows per parallel task in the matrix-vector product.
@@ -89,6 +90,32 @@ impl BlockSparse {
     }
     pub fn blocks_mut(&mut self) -> &mut [Mat3] {
         &mut self.blocks
+    }
+
+    /// Sets the values row by row, in parallel when `parallel`: `f(r, first, blocks)` gets
+    /// row `r`'s blocks, the first of them at storage slot `first`.
+    pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, usize, &mut [Mat3]) + Sync) {
+        let row_ptr = &self.row_ptr;
+        for_each_row_chunk(row_ptr, &mut self.blocks, ROWS_PER_TASK, parallel, |rows, chunk| {
+            let base = row_ptr[rows.start];
+            for r in rows {
+                let (first, end) = (row_ptr[r], row_ptr[r + 1]);
+                f(r, first, &mut chunk[first - base..end - base]);
+            }
+        });
+    }
+
+    /// Makes the matrix exactly symmetric, `(A + A^T) / 2`, after an assembly whose two
+    /// triangles were summed in different orders.
+    pub fn symmetrize(&mut self) {
+        for s in 0..self.blocks.len() {
+            let t = self.transpose[s] as usize;
+            if t >= s {
+                let mean = 0.5 * (self.blocks[s] + self.blocks[t].transpose());
+                self.blocks[s] = mean;
+                self.blocks[t] = mean.transpose();
+            }
+        }
     }
 
     /// `y = A x`, in parallel over rows when `parallel`.

@@ -138,6 +138,22 @@ impl Filter {
         }
     }
 
+    /// `S_r`: particle `r`'s projection onto its free directions.
+    pub fn free_projection(&self, r: usize) -> Mat3 {
+        match self.slot[r] {
+            u32::MAX => Mat3::identity(),
+            k => self.entries[k as usize].1,
+        }
+    }
+
+    /// `S_r m`: a block row projected.
+    pub fn project_block(&self, r: usize, m: &Mat3) -> Mat3 {
+        match self.slot[r] {
+            u32::MAX => *m,
+            k => self.entries[k as usize].1 * m,
+        }
+    }
+
     /// Diagonal block `r` of the filtered matrix `S A S + I - S`, given `A`'s block `d`.
     pub fn filtered_diagonal(&self, r: usize, d: &Mat3) -> Mat3 {
         match self.slot[r] {

@@ -3,8 +3,11 @@
 
 mod block_sparse;
 mod filter;
+mod multigrid;
 mod pcg;
+mod row_chunks;
 
 pub use block_sparse::BlockSparse;
 pub use filter::{Constraint, ConstraintKind, Filter};
-pub use pcg::{Pcg, PcgOutcome, PcgSettings};
+pub use multigrid::Multigrid;
+pub use pcg::{Pcg, PcgOutcome, PcgSettings, Preconditioner};

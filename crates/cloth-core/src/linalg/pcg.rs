@@ -2,23 +2,37 @@
 //! with our block-sparse operator and the constraint filter inside it. All scratch is
 //! allocated once in [`Pcg::new`].
 
-use super::{BlockSparse, Filter};
+use super::{BlockSparse, Filter, Multigrid};
 use crate::{Mat3, Vec3};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::matrix_free::conjugate_gradient::{
-    conjugate_gradient, conjugate_gradient_scratch, CgError, CgParams,
+    conjugate_gradient, conjugate_gradient_scratch, CgError, CgInfo, CgParams,
 };
 use faer::matrix_free::{LinOp, Precond};
 use faer::{Mat, MatMut, MatRef, Par};
 use serde::{Deserialize, Serialize};
 
-/// Stopping rule of the linear solve.
+/// What preconditions the conjugate gradients.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Preconditioner {
+    /// The inverse of each particle's 3x3 diagonal block: cheap, but the iteration count
+    /// grows with the mesh's resolution.
+    BlockJacobi,
+    /// One V-cycle of smoothed-aggregation multigrid ([`Multigrid`]): an iteration count
+    /// that grows far more slowly with the resolution, for a setup of a few matrix
+    /// products per solve.
+    Multigrid,
+}
+
+/// Stopping rule and preconditioner of the linear solve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PcgSettings {
     /// Stop when `|r| <= rel_tolerance * |b|`.
     pub rel_tolerance: f64,
     pub max_iterations: usize,
+    pub preconditioner: Preconditioner,
 }
 
 impl Default for PcgSettings {
@@ -26,6 +40,7 @@ impl Default for PcgSettings {
         Self {
             rel_tolerance: 1e-3,
             max_iterations: 1000,
+            preconditioner: Preconditioner::Multigrid,
         }
     }
 }
@@ -43,7 +58,7 @@ pub struct PcgOutcome {
 /// there (the right-hand side and the initial guess are projected, and the block-Jacobi
 /// preconditioner keeps the split), so one product and a projection of the constrained
 /// rows in the same pass is the whole filtered operator.
-#[derive(Debug)]
+#[derive(Debug, Clone, Copy)]
 struct Operator<'a> {
     a: &'a BlockSparse,
     filter: &'a Filter,
@@ -113,9 +128,53 @@ impl LinOp<f64> for BlockJacobi<'_> {
 
 impl Precond<f64> for BlockJacobi<'_> {}
 
+/// The multigrid V-cycle, for the filter of this solve.
+#[derive(Debug)]
+struct MultigridCycle<'a> {
+    multigrid: &'a Multigrid,
+    a: &'a BlockSparse,
+    filter: &'a Filter,
+    parallel: bool,
+}
+
+impl LinOp<f64> for MultigridCycle<'_> {
+    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
+        StackReq::EMPTY
+    }
+    fn nrows(&self) -> usize {
+        3 * self.a.n()
+    }
+    fn ncols(&self) -> usize {
+        3 * self.a.n()
+    }
+    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
+        self.multigrid
+            .apply(self.a, self.filter, blocks(rhs), blocks_mut(out), self.parallel);
+    }
+    fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
+        self.apply(out, rhs, par, stack);
+    }
+}
+
+impl Precond<f64> for MultigridCycle<'_> {}
+
+/// Runs faer's conjugate gradients with `precond`.
+fn run_cg(
+    sol: MatMut<'_, f64>,
+    precond: impl Precond<f64>,
+    operator: Operator<'_>,
+    rhs: MatRef<'_, f64>,
+    params: CgParams<f64>,
+    buffer: &mut MemBuffer,
+) -> Result<CgInfo<f64>, CgError<f64>> {
+    conjugate_gradient(sol, precond, operator, rhs, params, |_| {}, Par::Seq, MemStack::new(buffer))
+}
+
 /// Reusable PCG workspace for systems of `n` blocks.
 pub struct Pcg {
     inv_diag: Vec<Mat3>,
+    /// Made on the first multigrid solve, for the pattern of its matrix.
+    multigrid: Option<Multigrid>,
     residual: Vec<Vec3>,
     rhs: Mat<f64>,
     sol: Mat<f64>,
@@ -147,6 +206,7 @@ impl Pcg {
         );
         Self {
             inv_diag,
+            multigrid: None,
             residual: vec![Vec3::zeros(); n],
             rhs: Mat::zeros(3 * n, 1),
             sol: Mat::zeros(3 * n, 1),
@@ -171,13 +231,6 @@ impl Pcg {
         parallel: bool,
     ) -> Result<PcgOutcome, String> {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
-        for (r, inv) in self.inv_diag.iter_mut().enumerate() {
-            let d = filter.filtered_diagonal(r, &a.blocks()[a.diag_slot(r)]);
-            *inv = d
-                .cholesky()
-                .map(|c| c.inverse())
-                .ok_or_else(|| format!("diagonal block of particle {r} is not positive definite"))?;
-        }
         blocks_mut(self.rhs.as_mut()).copy_from_slice(b);
         blocks_mut(self.sol.as_mut()).copy_from_slice(x);
         // The default MaybeNonZero initial guess: faer 0.24's `Zero` path leaves the
@@ -188,16 +241,28 @@ impl Pcg {
             max_iters: settings.max_iterations,
             ..Default::default()
         };
-        let result = conjugate_gradient(
-            self.sol.as_mut(),
-            BlockJacobi { inv: &self.inv_diag },
-            Operator { a, filter, parallel },
-            self.rhs.as_ref(),
-            params,
-            |_| {},
-            Par::Seq,
-            MemStack::new(&mut self.buffer),
-        );
+        let operator = Operator { a, filter, parallel };
+        let result = match settings.preconditioner {
+            Preconditioner::BlockJacobi => {
+                for (r, inv) in self.inv_diag.iter_mut().enumerate() {
+                    let d = filter.filtered_diagonal(r, &a.blocks()[a.diag_slot(r)]);
+                    *inv = d.cholesky().map(|c| c.inverse()).ok_or_else(|| {
+                        format!("diagonal block of particle {r} is not positive definite")
+                    })?;
+                }
+                let precond = BlockJacobi { inv: &self.inv_diag };
+                run_cg(self.sol.as_mut(), precond, operator, self.rhs.as_ref(), params, &mut self.buffer)
+            }
+            Preconditioner::Multigrid => {
+                let multigrid = match &mut self.multigrid {
+                    Some(m) if m.fits(a) => m,
+                    slot => slot.insert(Multigrid::new(a)),
+                };
+                multigrid.build(a, filter, parallel)?;
+                let precond = MultigridCycle { multigrid, a, filter, parallel };
+                run_cg(self.sol.as_mut(), precond, operator, self.rhs.as_ref(), params, &mut self.buffer)
+            }
+        };
         let outcome = match result {
             Ok(info) => PcgOutcome {
                 iterations: info.iter_count,

@@ -1,0 +1,150 @@
+//! The prolongator `P` from a level to the next coarser one: a rectangular matrix of 3x3
+//! blocks, fine nodes by aggregates, stored by rows with a transposed index so both `P x`
+//! and `P^T r` run in parallel over their output rows.
+
+use super::aggregation::Aggregates;
+use crate::linalg::row_chunks::for_each_row_chunk;
+use crate::linalg::BlockSparse;
+use crate::{Mat3, Vec3};
+use rayon::prelude::*;
+
+const ROWS_PER_TASK: usize = 512;
+
+#[derive(Debug, Clone)]
+pub(super) struct Prolongator {
+    coarse: usize,
+    row_ptr: Vec<usize>,
+    cols: Vec<u32>,
+    blocks: Vec<Mat3>,
+    /// For each coarse node, the storage slots of its column, in fine-row order.
+    col_ptr: Vec<usize>,
+    col_slots: Vec<u32>,
+    /// Fine row of each slot.
+    slot_row: Vec<u32>,
+}
+
+impl Prolongator {
+    /// The pattern of the smoothed prolongator `(I - w D^-1 A) P_tentative`: fine node `i`
+    /// reaches the aggregates of its neighbours in `a`.
+    pub fn pattern(a: &BlockSparse, aggregates: &Aggregates) -> Self {
+        let n = a.n();
+        let mut row_ptr = Vec::with_capacity(n + 1);
+        let mut cols = Vec::new();
+        row_ptr.push(0);
+        let mut row = Vec::new();
+        for i in 0..n {
+            row.clear();
+            row.extend(a.row(i).map(|s| aggregates.of_node[a.col_of(s)]));
+            row.sort_unstable();
+            row.dedup();
+            cols.extend_from_slice(&row);
+            row_ptr.push(cols.len());
+        }
+        let coarse = aggregates.count;
+        let mut col_count = vec![0usize; coarse + 1];
+        for &c in &cols {
+            col_count[c as usize + 1] += 1;
+        }
+        let mut col_ptr = col_count;
+        for k in 0..coarse {
+            col_ptr[k + 1] += col_ptr[k];
+        }
+        let mut fill = col_ptr.clone();
+        let mut col_slots = vec![0u32; cols.len()];
+        let mut slot_row = vec![0u32; cols.len()];
+        for i in 0..n {
+            for s in row_ptr[i]..row_ptr[i + 1] {
+                let c = cols[s] as usize;
+                col_slots[fill[c]] = s as u32;
+                fill[c] += 1;
+                slot_row[s] = i as u32;
+            }
+        }
+        Self {
+            coarse,
+            blocks: vec![Mat3::zeros(); cols.len()],
+            row_ptr,
+            cols,
+            col_ptr,
+            col_slots,
+            slot_row,
+        }
+    }
+
+    pub fn coarse(&self) -> usize {
+        self.coarse
+    }
+    pub fn row(&self, i: usize) -> std::ops::Range<usize> {
+        self.row_ptr[i]..self.row_ptr[i + 1]
+    }
+    pub fn col_of(&self, slot: usize) -> usize {
+        self.cols[slot] as usize
+    }
+    pub fn blocks(&self) -> &[Mat3] {
+        &self.blocks
+    }
+    /// The slots of coarse column `a`, with their fine rows.
+    pub fn column(&self, a: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.col_slots[self.col_ptr[a]..self.col_ptr[a + 1]]
+            .iter()
+            .map(|&s| (self.slot_row[s as usize] as usize, s as usize))
+    }
+
+    /// Fills the values row by row: `f(i, cols, blocks)` writes row `i`.
+    pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, &[u32], &mut [Mat3]) + Sync) {
+        let (row_ptr, cols) = (&self.row_ptr, &self.cols);
+        for_each_row_chunk(row_ptr, &mut self.blocks, ROWS_PER_TASK, parallel, |rows, chunk| {
+            let base = row_ptr[rows.start];
+            for i in rows {
+                let range = row_ptr[i]..row_ptr[i + 1];
+                f(i, &cols[range.clone()], &mut chunk[range.start - base..range.end - base]);
+            }
+        });
+    }
+
+    /// `y += g(i, P x)`: a coarse correction brought to the fine nodes, `g` post-processing
+    /// each row (the fine level's constraint projection).
+    pub fn prolong_add(
+        &self,
+        x: &[Vec3],
+        y: &mut [Vec3],
+        parallel: bool,
+        g: impl Fn(usize, Vec3) -> Vec3 + Sync,
+    ) {
+        let run = |(task, out): (usize, &mut [Vec3])| {
+            let first = task * ROWS_PER_TASK;
+            for (k, yi) in out.iter_mut().enumerate() {
+                let i = first + k;
+                let mut s = Vec3::zeros();
+                for slot in self.row(i) {
+                    s += self.blocks[slot] * x[self.cols[slot] as usize];
+                }
+                *yi += g(i, s);
+            }
+        };
+        if parallel {
+            y.par_chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
+        } else {
+            y.chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
+        }
+    }
+
+    /// `out = P^T r`.
+    pub fn restrict(&self, r: &[Vec3], out: &mut [Vec3], parallel: bool) {
+        let run = |(task, out): (usize, &mut [Vec3])| {
+            let first = task * ROWS_PER_TASK;
+            for (k, o) in out.iter_mut().enumerate() {
+                let mut s = Vec3::zeros();
+                for (i, slot) in self.column(first + k) {
+                    s += self.blocks[slot].tr_mul(&r[i]);
+                }
+                *o = s;
+            }
+        };
+        if parallel {
+            out.par_chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
+        } else {
+            out.chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
+        }
+    }
+}
