@@ -1,17 +1,15 @@
 //! The block-sparse PCG against a direct sparse Cholesky, with each preconditioner, and
 //! the constraint filter.
 
-const PRECONDITIONERS: [Preconditioner; 2] = [Preconditioner::BlockJacobi, Preconditioner::Multigrid];
-
-use cloth_core::linalg::{
-    BlockSparse, Constraint, ConstraintKind, Filter, Pcg, PcgSettings, Preconditioner,
-};
+use cloth_core::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg, PcgSettings, Preconditioner};
 use cloth_core::{Mat3, Vec3};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Side;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+
+const PRECONDITIONERS: [Preconditioner; 2] = [Preconditioner::BlockJacobi, Preconditioner::Multigrid];
 
 /// A random SPD block system: a sum of random PSD 6x6 couplings over random pairs plus a
 /// positive diagonal, like a mass matrix plus stiffness.
@@ -80,7 +78,10 @@ fn pcg_agrees_with_sparse_cholesky() {
             .map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0)))
             .collect();
         let direct = direct_solve(&a, &b);
-        for (parallel, preconditioner) in [false, true].into_iter().flat_map(|p| PRECONDITIONERS.map(|c| (p, c))) {
+        for (parallel, preconditioner) in [false, true]
+            .into_iter()
+            .flat_map(|p| PRECONDITIONERS.map(|c| (p, c)))
+        {
             let mut x = vec![Vec3::zeros(); n];
             let settings = PcgSettings {
                 rel_tolerance: 1e-12,
@@ -92,7 +93,10 @@ fn pcg_agrees_with_sparse_cholesky() {
                 .unwrap();
             assert!(out.converged && out.rel_residual <= 1e-12, "{out:?}");
             let err = max_diff(&x, &direct) / max_norm(&direct);
-            assert!(err < 1e-8, "n = {n}, {preconditioner:?}: PCG differs from Cholesky by {err:e}");
+            assert!(
+                err < 1e-8,
+                "n = {n}, {preconditioner:?}: PCG differs from Cholesky by {err:e}"
+            );
         }
     }
 }

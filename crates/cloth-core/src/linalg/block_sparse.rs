@@ -4,8 +4,8 @@
 //! parallel over rows with no reduction across threads, hence identical for any
 //! thread count.
 
-use crate::{Mat3, Vec3};
 use super::row_chunks::for_each_row_chunk;
+use crate::{Mat3, Vec3};
 use rayon::prelude::*;
 
 /// Rows per parallel task in the matrix-vector product.
@@ -85,6 +85,13 @@ impl BlockSparse {
     pub fn transpose_slot(&self, slot: usize) -> usize {
         self.transpose[slot] as usize
     }
+    /// The pattern: each row's first storage slot (and the end), and each slot's column.
+    pub fn row_starts(&self) -> &[usize] {
+        &self.row_ptr
+    }
+    pub fn columns(&self) -> &[u32] {
+        &self.cols
+    }
     pub fn blocks(&self) -> &[Mat3] {
         &self.blocks
     }
@@ -96,13 +103,19 @@ impl BlockSparse {
     /// row `r`'s blocks, the first of them at storage slot `first`.
     pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, usize, &mut [Mat3]) + Sync) {
         let row_ptr = &self.row_ptr;
-        for_each_row_chunk(row_ptr, &mut self.blocks, ROWS_PER_TASK, parallel, |rows, chunk| {
-            let base = row_ptr[rows.start];
-            for r in rows {
-                let (first, end) = (row_ptr[r], row_ptr[r + 1]);
-                f(r, first, &mut chunk[first - base..end - base]);
-            }
-        });
+        for_each_row_chunk(
+            row_ptr,
+            &mut self.blocks,
+            ROWS_PER_TASK,
+            parallel,
+            |rows, chunk| {
+                let base = row_ptr[rows.start];
+                for r in rows {
+                    let (first, end) = (row_ptr[r], row_ptr[r + 1]);
+                    f(r, first, &mut chunk[first - base..end - base]);
+                }
+            },
+        );
     }
 
     /// Makes the matrix exactly symmetric, `(A + A^T) / 2`, after an assembly whose two

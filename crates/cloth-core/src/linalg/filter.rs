@@ -146,14 +146,6 @@ impl Filter {
         }
     }
 
-    /// `S_r m`: a block row projected.
-    pub fn project_block(&self, r: usize, m: &Mat3) -> Mat3 {
-        match self.slot[r] {
-            u32::MAX => *m,
-            k => self.entries[k as usize].1 * m,
-        }
-    }
-
     /// Diagonal block `r` of the filtered matrix `S A S + I - S`, given `A`'s block `d`.
     pub fn filtered_diagonal(&self, r: usize, d: &Mat3) -> Mat3 {
         match self.slot[r] {

@@ -1,5 +1,6 @@
 //! Block-sparse linear algebra for the implicit step: the 3x3-block matrix, the
-//! constraint filter, and preconditioned conjugate gradients on faer.
+//! constraint filter, preconditioned conjugate gradients on faer, and the multigrid
+//! preconditioner.
 
 mod block_sparse;
 mod filter;
@@ -10,4 +11,5 @@ mod row_chunks;
 pub use block_sparse::BlockSparse;
 pub use filter::{Constraint, ConstraintKind, Filter};
 pub use multigrid::Multigrid;
+pub(crate) use pcg::inverse_diagonal;
 pub use pcg::{Pcg, PcgOutcome, PcgSettings, Preconditioner};

@@ -1,6 +1,7 @@
-//! Block-Jacobi preconditioned conjugate gradients through faer's matrix-free solver,
-//! with our block-sparse operator and the constraint filter inside it. All scratch is
-//! allocated once in [`Pcg::new`].
+//! Preconditioned conjugate gradients through faer's matrix-free solver, with our
+//! block-sparse operator and the constraint filter inside it, and a multigrid or
+//! block-Jacobi preconditioner. All scratch is allocated by the first solve (and again
+//! only if the matrix's pattern changes).
 
 use super::{BlockSparse, Filter, Multigrid};
 use crate::{Mat3, Vec3};
@@ -55,8 +56,8 @@ pub struct PcgOutcome {
 }
 
 /// `S A S + I - S` on vectors in the range of `S`, where it is `S A`: every CG vector stays
-/// there (the right-hand side and the initial guess are projected, and the block-Jacobi
-/// preconditioner keeps the split), so one product and a projection of the constrained
+/// there (the right-hand side and the initial guess are projected, and both
+/// preconditioners keep the split), so one product and a projection of the constrained
 /// rows in the same pass is the whole filtered operator.
 #[derive(Debug, Clone, Copy)]
 struct Operator<'a> {
@@ -158,6 +159,21 @@ impl LinOp<f64> for MultigridCycle<'_> {
 
 impl Precond<f64> for MultigridCycle<'_> {}
 
+/// The inverses of the diagonal blocks of `a`, filtered by `filter` if given, or the
+/// first block that has none.
+pub(crate) fn inverse_diagonal(
+    a: &BlockSparse,
+    filter: Option<&Filter>,
+    out: &mut [Mat3],
+) -> Result<(), usize> {
+    for (r, inv) in out.iter_mut().enumerate() {
+        let d = a.blocks()[a.diag_slot(r)];
+        let d = filter.map_or(d, |f| f.filtered_diagonal(r, &d));
+        *inv = d.cholesky().ok_or(r)?.inverse();
+    }
+    Ok(())
+}
+
 /// Runs faer's conjugate gradients with `precond`.
 fn run_cg(
     sol: MatMut<'_, f64>,
@@ -167,7 +183,16 @@ fn run_cg(
     params: CgParams<f64>,
     buffer: &mut MemBuffer,
 ) -> Result<CgInfo<f64>, CgError<f64>> {
-    conjugate_gradient(sol, precond, operator, rhs, params, |_| {}, Par::Seq, MemStack::new(buffer))
+    conjugate_gradient(
+        sol,
+        precond,
+        operator,
+        rhs,
+        params,
+        |_| {},
+        Par::Seq,
+        MemStack::new(buffer),
+    )
 }
 
 /// Reusable PCG workspace for systems of `n` blocks.
@@ -244,14 +269,17 @@ impl Pcg {
         let operator = Operator { a, filter, parallel };
         let result = match settings.preconditioner {
             Preconditioner::BlockJacobi => {
-                for (r, inv) in self.inv_diag.iter_mut().enumerate() {
-                    let d = filter.filtered_diagonal(r, &a.blocks()[a.diag_slot(r)]);
-                    *inv = d.cholesky().map(|c| c.inverse()).ok_or_else(|| {
-                        format!("diagonal block of particle {r} is not positive definite")
-                    })?;
-                }
+                inverse_diagonal(a, Some(filter), &mut self.inv_diag)
+                    .map_err(|r| format!("diagonal block of particle {r} is not positive definite"))?;
                 let precond = BlockJacobi { inv: &self.inv_diag };
-                run_cg(self.sol.as_mut(), precond, operator, self.rhs.as_ref(), params, &mut self.buffer)
+                run_cg(
+                    self.sol.as_mut(),
+                    precond,
+                    operator,
+                    self.rhs.as_ref(),
+                    params,
+                    &mut self.buffer,
+                )
             }
             Preconditioner::Multigrid => {
                 let multigrid = match &mut self.multigrid {
@@ -259,8 +287,39 @@ impl Pcg {
                     slot => slot.insert(Multigrid::new(a)),
                 };
                 multigrid.build(a, filter, parallel)?;
-                let precond = MultigridCycle { multigrid, a, filter, parallel };
-                run_cg(self.sol.as_mut(), precond, operator, self.rhs.as_ref(), params, &mut self.buffer)
+                let precond = MultigridCycle {
+                    multigrid,
+                    a,
+                    filter,
+                    parallel,
+                };
+                let result = run_cg(
+                    self.sol.as_mut(),
+                    precond,
+                    operator,
+                    self.rhs.as_ref(),
+                    params,
+                    &mut self.buffer,
+                );
+                if let Err(CgError::NonPositiveDefinitePreconditioner) = result {
+                    // The smoother's weight rests on an estimate of the spectral radius;
+                    // should it fall short, the cycle is not definite. Block Jacobi always
+                    // is: solve again with it rather than fail the step.
+                    inverse_diagonal(a, Some(filter), &mut self.inv_diag)
+                        .map_err(|r| format!("diagonal block of particle {r} is not positive definite"))?;
+                    blocks_mut(self.sol.as_mut()).copy_from_slice(x);
+                    let precond = BlockJacobi { inv: &self.inv_diag };
+                    run_cg(
+                        self.sol.as_mut(),
+                        precond,
+                        operator,
+                        self.rhs.as_ref(),
+                        params,
+                        &mut self.buffer,
+                    )
+                } else {
+                    result
+                }
             }
         };
         let outcome = match result {

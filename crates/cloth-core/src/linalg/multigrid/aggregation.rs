@@ -12,12 +12,15 @@ pub(super) struct Aggregates {
 }
 
 const NONE: u32 = u32::MAX;
+/// Uncoupled nodes per aggregate.
+const UNCOUPLED_BATCH: usize = 8;
 
 /// A coupling `A_ij` is strong when `|A_ij| >= strength * sqrt(|A_ii| |A_jj|)` (Frobenius
 /// norms; with `strength` 0, every stored coupling). In node order: a node whose strong
-/// neighbours are all free founds an aggregate of itself and them; a node left over joins
-/// the neighbouring aggregate it has most strong couplings with; what is still left (a
-/// patch cut off from every aggregate) is aggregated the same way among itself.
+/// neighbours are all unassigned founds an aggregate of itself and them; a node left over
+/// joins the neighbouring aggregate it has most strong couplings with (it has one, or it
+/// would have founded its own); nodes with no strong coupling are grouped by eights.
+/// Every aggregate but the last has at least two nodes, so a level at least halves.
 pub(super) fn aggregate(a: &BlockSparse, strength: f64) -> Aggregates {
     let n = a.n();
     let mut of_node = vec![NONE; n];
@@ -66,16 +69,20 @@ pub(super) fn aggregate(a: &BlockSparse, strength: f64) -> Aggregates {
         }
     }
 
-    for i in 0..n {
-        if of_node[i] == NONE {
-            of_node[i] = count;
-            for j in neighbours(i) {
-                if of_node[j] == NONE {
-                    of_node[j] = count;
-                }
-            }
+    // Left now are only nodes with no strong coupling at all (a stray vertex, or a
+    // coupling too weak to matter): grouped a few at a time in node order, so the level
+    // still shrinks; with nothing between them, any grouping is as good.
+    let mut batch = 0;
+    for node in of_node.iter_mut().filter(|g| **g == NONE) {
+        *node = count;
+        batch += 1;
+        if batch == UNCOUPLED_BATCH {
             count += 1;
+            batch = 0;
         }
+    }
+    if batch > 0 {
+        count += 1;
     }
     Aggregates {
         of_node,

@@ -93,33 +93,35 @@ impl Prolongator {
     /// Fills the values row by row: `f(i, cols, blocks)` writes row `i`.
     pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, &[u32], &mut [Mat3]) + Sync) {
         let (row_ptr, cols) = (&self.row_ptr, &self.cols);
-        for_each_row_chunk(row_ptr, &mut self.blocks, ROWS_PER_TASK, parallel, |rows, chunk| {
-            let base = row_ptr[rows.start];
-            for i in rows {
-                let range = row_ptr[i]..row_ptr[i + 1];
-                f(i, &cols[range.clone()], &mut chunk[range.start - base..range.end - base]);
-            }
-        });
+        for_each_row_chunk(
+            row_ptr,
+            &mut self.blocks,
+            ROWS_PER_TASK,
+            parallel,
+            |rows, chunk| {
+                let base = row_ptr[rows.start];
+                for i in rows {
+                    let range = row_ptr[i]..row_ptr[i + 1];
+                    f(
+                        i,
+                        &cols[range.clone()],
+                        &mut chunk[range.start - base..range.end - base],
+                    );
+                }
+            },
+        );
     }
 
-    /// `y += g(i, P x)`: a coarse correction brought to the fine nodes, `g` post-processing
-    /// each row (the fine level's constraint projection).
-    pub fn prolong_add(
-        &self,
-        x: &[Vec3],
-        y: &mut [Vec3],
-        parallel: bool,
-        g: impl Fn(usize, Vec3) -> Vec3 + Sync,
-    ) {
+    /// `y += P x`: a coarse correction brought to the fine nodes.
+    pub fn prolong_add(&self, x: &[Vec3], y: &mut [Vec3], parallel: bool) {
         let run = |(task, out): (usize, &mut [Vec3])| {
             let first = task * ROWS_PER_TASK;
             for (k, yi) in out.iter_mut().enumerate() {
-                let i = first + k;
                 let mut s = Vec3::zeros();
-                for slot in self.row(i) {
+                for slot in self.row(first + k) {
                     s += self.blocks[slot] * x[self.cols[slot] as usize];
                 }
-                *yi += g(i, s);
+                *yi += s;
             }
         };
         if parallel {
