@@ -4,12 +4,8 @@
 //! parallel over rows with no reduction across threads, hence identical for any
 //! thread count.
 
-use super::row_chunks::for_each_row_chunk;
+use super::row_chunks::{for_each_entry, for_each_row};
 use crate::{Mat3, Vec3};
-use rayon::prelude::*;
-
-/// Rows per parallel task in the matrix-vector product.
-const ROWS_PER_TASK: usize = 512;
 
 #[derive(Debug, Clone)]
 pub struct BlockSparse {
@@ -102,20 +98,7 @@ impl BlockSparse {
     /// Sets the values row by row, in parallel when `parallel`: `f(r, first, blocks)` gets
     /// row `r`'s blocks, the first of them at storage slot `first`.
     pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, usize, &mut [Mat3]) + Sync) {
-        let row_ptr = &self.row_ptr;
-        for_each_row_chunk(
-            row_ptr,
-            &mut self.blocks,
-            ROWS_PER_TASK,
-            parallel,
-            |rows, chunk| {
-                let base = row_ptr[rows.start];
-                for r in rows {
-                    let (first, end) = (row_ptr[r], row_ptr[r + 1]);
-                    f(r, first, &mut chunk[first - base..end - base]);
-                }
-            },
-        );
+        for_each_row(&self.row_ptr, &mut self.blocks, parallel, f);
     }
 
     /// Makes the matrix exactly symmetric, `(A + A^T) / 2`, after an assembly whose two
@@ -146,21 +129,13 @@ impl BlockSparse {
     ) {
         debug_assert_eq!(x.len(), self.n());
         debug_assert_eq!(y.len(), self.n());
-        let run = |(task, out): (usize, &mut [Vec3])| {
-            let first = task * ROWS_PER_TASK;
-            for (k, yr) in out.iter_mut().enumerate() {
-                let mut s = Vec3::zeros();
-                for slot in self.row(first + k) {
-                    s += self.blocks[slot] * x[self.cols[slot] as usize];
-                }
-                *yr = f(first + k, s);
+        for_each_entry(y, parallel, |r, yr| {
+            let mut s = Vec3::zeros();
+            for slot in self.row(r) {
+                s += self.blocks[slot] * x[self.cols[slot] as usize];
             }
-        };
-        if parallel {
-            y.par_chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
-        } else {
-            y.chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
-        }
+            *yr = f(r, s);
+        });
     }
 
     /// Dense copy (tests and diagnostics).

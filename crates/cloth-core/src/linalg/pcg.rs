@@ -55,23 +55,20 @@ pub struct PcgOutcome {
     pub converged: bool,
 }
 
-/// `S A S + I - S` on vectors in the range of `S`, where it is `S A`: every CG vector stays
-/// there (the right-hand side and the initial guess are projected, and both
-/// preconditioners keep the split), so one product and a projection of the constrained
-/// rows in the same pass is the whole filtered operator.
-#[derive(Debug, Clone, Copy)]
-struct Operator<'a> {
-    a: &'a BlockSparse,
-    filter: &'a Filter,
-    parallel: bool,
+/// A linear map on `n` 3-vectors, `f(x, y)` writing `y`: our operator and preconditioners
+/// seen through faer's interfaces (a faer column of length 3n is n 3-vectors, no copy).
+#[derive(Clone, Copy)]
+struct BlockMap<F> {
+    n: usize,
+    f: F,
 }
 
-#[derive(Debug)]
-struct BlockJacobi<'a> {
-    inv: &'a [Mat3],
+impl<F> std::fmt::Debug for BlockMap<F> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BlockMap").field("n", &self.n).finish()
+    }
 }
 
-/// A faer column of length 3n seen as n 3-vectors (no copy).
 fn blocks(m: MatRef<'_, f64>) -> &[Vec3] {
     bytemuck::cast_slice(m.col(0).try_as_col_major().expect("contiguous column").as_slice())
 }
@@ -84,80 +81,52 @@ fn blocks_mut(m: MatMut<'_, f64>) -> &mut [Vec3] {
     )
 }
 
-impl LinOp<f64> for Operator<'_> {
+impl<F: Fn(&[Vec3], &mut [Vec3]) + Sync> LinOp<f64> for BlockMap<F> {
     fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
         StackReq::EMPTY
     }
     fn nrows(&self) -> usize {
-        3 * self.a.n()
+        3 * self.n
     }
     fn ncols(&self) -> usize {
-        3 * self.a.n()
+        3 * self.n
     }
     fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
-        let filter = self.filter;
-        self.a
-            .mul_then(blocks(rhs), blocks_mut(out), self.parallel, |r, y| {
-                filter.project_row(r, y)
-            });
+        (self.f)(blocks(rhs), blocks_mut(out));
     }
     fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
         self.apply(out, rhs, par, stack);
     }
 }
 
-impl LinOp<f64> for BlockJacobi<'_> {
-    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
-        StackReq::EMPTY
-    }
-    fn nrows(&self) -> usize {
-        3 * self.inv.len()
-    }
-    fn ncols(&self) -> usize {
-        3 * self.inv.len()
-    }
-    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
-        let (x, y) = (blocks(rhs), blocks_mut(out));
-        for ((yk, xk), m) in y.iter_mut().zip(x).zip(self.inv) {
-            *yk = m * xk;
-        }
-    }
-    fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
-        self.apply(out, rhs, par, stack);
-    }
-}
+impl<F: Fn(&[Vec3], &mut [Vec3]) + Sync> Precond<f64> for BlockMap<F> {}
 
-impl Precond<f64> for BlockJacobi<'_> {}
-
-/// The multigrid V-cycle, for the filter of this solve.
-#[derive(Debug)]
-struct MultigridCycle<'a> {
-    multigrid: &'a Multigrid,
+/// `S A S + I - S` on vectors in the range of `S`, where it is `S A`: every CG vector stays
+/// there (the right-hand side and the initial guess are projected, and both
+/// preconditioners keep the split), so one product and a projection of the constrained
+/// rows in the same pass is the whole filtered operator.
+fn filtered_product<'a>(
     a: &'a BlockSparse,
     filter: &'a Filter,
     parallel: bool,
-}
-
-impl LinOp<f64> for MultigridCycle<'_> {
-    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
-        StackReq::EMPTY
-    }
-    fn nrows(&self) -> usize {
-        3 * self.a.n()
-    }
-    fn ncols(&self) -> usize {
-        3 * self.a.n()
-    }
-    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
-        self.multigrid
-            .apply(self.a, self.filter, blocks(rhs), blocks_mut(out), self.parallel);
-    }
-    fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
-        self.apply(out, rhs, par, stack);
+) -> BlockMap<impl Fn(&[Vec3], &mut [Vec3]) + Sync + Copy + 'a> {
+    BlockMap {
+        n: a.n(),
+        f: move |x: &[Vec3], y: &mut [Vec3]| a.mul_then(x, y, parallel, |r, v| filter.project_row(r, v)),
     }
 }
 
-impl Precond<f64> for MultigridCycle<'_> {}
+/// The block-Jacobi preconditioner: each particle's inverse diagonal block.
+fn block_jacobi(inv: &[Mat3]) -> BlockMap<impl Fn(&[Vec3], &mut [Vec3]) + Sync + '_> {
+    BlockMap {
+        n: inv.len(),
+        f: move |x: &[Vec3], y: &mut [Vec3]| {
+            for ((yk, xk), m) in y.iter_mut().zip(x).zip(inv) {
+                *yk = m * xk;
+            }
+        },
+    }
+}
 
 /// The inverses of the diagonal blocks of `a`, filtered by `filter` if given, or the
 /// first block that has none.
@@ -178,7 +147,7 @@ pub(crate) fn inverse_diagonal(
 fn run_cg(
     sol: MatMut<'_, f64>,
     precond: impl Precond<f64>,
-    operator: Operator<'_>,
+    operator: impl LinOp<f64>,
     rhs: MatRef<'_, f64>,
     params: CgParams<f64>,
     buffer: &mut MemBuffer,
@@ -220,12 +189,8 @@ impl Pcg {
         let a = BlockSparse::from_pairs(n.max(1), []);
         let filter = Filter::new(n.max(1), 0);
         let req = conjugate_gradient_scratch(
-            BlockJacobi { inv: &inv_diag },
-            Operator {
-                a: &a,
-                filter: &filter,
-                parallel: false,
-            },
+            block_jacobi(&inv_diag),
+            filtered_product(&a, &filter, false),
             1,
             Par::Seq,
         );
@@ -266,60 +231,45 @@ impl Pcg {
             max_iters: settings.max_iterations,
             ..Default::default()
         };
-        let operator = Operator { a, filter, parallel };
-        let result = match settings.preconditioner {
-            Preconditioner::BlockJacobi => {
+        let operator = filtered_product(a, filter, parallel);
+        let mut result = None;
+        if settings.preconditioner == Preconditioner::Multigrid {
+            let multigrid = match &mut self.multigrid {
+                Some(m) if m.fits(a) => m,
+                slot => slot.insert(Multigrid::new(a)),
+            };
+            multigrid.build(a, filter, parallel)?;
+            let multigrid = &*multigrid;
+            let cycle = BlockMap {
+                n: a.n(),
+                f: |x: &[Vec3], y: &mut [Vec3]| multigrid.apply(a, filter, x, y, parallel),
+            };
+            let rhs = self.rhs.as_ref();
+            match run_cg(self.sol.as_mut(), cycle, operator, rhs, params, &mut self.buffer) {
+                // The smoother's weight rests on an estimate of the spectral radius; should
+                // it fall short, the cycle is not definite. Block Jacobi always is: solve
+                // again with it rather than fail the step.
+                Err(CgError::NonPositiveDefinitePreconditioner) => {
+                    blocks_mut(self.sol.as_mut()).copy_from_slice(x);
+                }
+                other => result = Some(other),
+            }
+        }
+        let result = match result {
+            Some(result) => result,
+            None => {
                 inverse_diagonal(a, Some(filter), &mut self.inv_diag)
                     .map_err(|r| format!("diagonal block of particle {r} is not positive definite"))?;
-                let precond = BlockJacobi { inv: &self.inv_diag };
+                let precond = block_jacobi(&self.inv_diag);
+                let rhs = self.rhs.as_ref();
                 run_cg(
                     self.sol.as_mut(),
                     precond,
                     operator,
-                    self.rhs.as_ref(),
+                    rhs,
                     params,
                     &mut self.buffer,
                 )
-            }
-            Preconditioner::Multigrid => {
-                let multigrid = match &mut self.multigrid {
-                    Some(m) if m.fits(a) => m,
-                    slot => slot.insert(Multigrid::new(a)),
-                };
-                multigrid.build(a, filter, parallel)?;
-                let precond = MultigridCycle {
-                    multigrid,
-                    a,
-                    filter,
-                    parallel,
-                };
-                let result = run_cg(
-                    self.sol.as_mut(),
-                    precond,
-                    operator,
-                    self.rhs.as_ref(),
-                    params,
-                    &mut self.buffer,
-                );
-                if let Err(CgError::NonPositiveDefinitePreconditioner) = result {
-                    // The smoother's weight rests on an estimate of the spectral radius;
-                    // should it fall short, the cycle is not definite. Block Jacobi always
-                    // is: solve again with it rather than fail the step.
-                    inverse_diagonal(a, Some(filter), &mut self.inv_diag)
-                        .map_err(|r| format!("diagonal block of particle {r} is not positive definite"))?;
-                    blocks_mut(self.sol.as_mut()).copy_from_slice(x);
-                    let precond = BlockJacobi { inv: &self.inv_diag };
-                    run_cg(
-                        self.sol.as_mut(),
-                        precond,
-                        operator,
-                        self.rhs.as_ref(),
-                        params,
-                        &mut self.buffer,
-                    )
-                } else {
-                    result
-                }
             }
         };
         let outcome = match result {
@@ -330,8 +280,7 @@ impl Pcg {
             },
             // faer 0.24 reports the initial residual here, so measure the final one.
             Err(CgError::NoConvergence { .. }) => {
-                let x = blocks(self.sol.as_ref());
-                a.mul_then(x, &mut self.residual, parallel, |r, y| filter.project_row(r, y));
+                (operator.f)(blocks(self.sol.as_ref()), &mut self.residual);
                 let (mut r2, mut b2) = (0.0, 0.0);
                 for (ax, bk) in self.residual.iter().zip(b) {
                     r2 += (bk - ax).norm_squared();

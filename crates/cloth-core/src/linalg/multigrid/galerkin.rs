@@ -2,11 +2,9 @@
 //! storage slot of every product term are found once; a rebuild only multiplies and adds.
 
 use super::prolongator::Prolongator;
-use crate::linalg::row_chunks::for_each_row_chunk;
+use crate::linalg::row_chunks::for_each_row;
 use crate::linalg::BlockSparse;
 use crate::Mat3;
-
-const ROWS_PER_TASK: usize = 256;
 
 #[derive(Debug, Clone)]
 pub(super) struct Galerkin {
@@ -94,30 +92,27 @@ impl Galerkin {
     /// `coarse = P^T a P`, symmetrised against rounding.
     pub fn multiply(&mut self, a: &BlockSparse, p: &Prolongator, coarse: &mut BlockSparse, parallel: bool) {
         let (ap_ptr, terms_ptr, terms) = (&self.ap_ptr, &self.ap_terms_ptr, &self.ap_terms);
-        for_each_row_chunk(ap_ptr, &mut self.ap, ROWS_PER_TASK, parallel, |rows, chunk| {
-            let base = ap_ptr[rows.start];
-            chunk.fill(Mat3::zeros());
-            for i in rows {
-                let mut k = terms_ptr[i];
-                for s in a.row(i) {
-                    let block = &a.blocks()[s];
-                    for q in p.row(a.col_of(s)) {
-                        chunk[terms[k] as usize - base] += block * p.blocks()[q];
-                        k += 1;
-                    }
+        for_each_row(ap_ptr, &mut self.ap, parallel, |i, first, row| {
+            row.fill(Mat3::zeros());
+            let mut k = terms_ptr[i];
+            for s in a.row(i) {
+                let block = &a.blocks()[s];
+                for q in p.row(a.col_of(s)) {
+                    row[terms[k] as usize - first] += block * p.blocks()[q];
+                    k += 1;
                 }
             }
         });
 
         let (ap, ap_ptr) = (&self.ap, &self.ap_ptr);
         let (terms_ptr, terms) = (&self.coarse_terms_ptr, &self.coarse_terms);
-        coarse.fill_rows(parallel, |a_c, row_base, chunk| {
-            chunk.fill(Mat3::zeros());
+        coarse.fill_rows(parallel, |a_c, first, row| {
+            row.fill(Mat3::zeros());
             let mut k = terms_ptr[a_c];
             for (i, q) in p.column(a_c) {
                 let pt = p.blocks()[q].transpose();
                 for t in ap_ptr[i]..ap_ptr[i + 1] {
-                    chunk[terms[k] as usize - row_base] += pt * ap[t];
+                    row[terms[k] as usize - first] += pt * ap[t];
                     k += 1;
                 }
             }

@@ -45,8 +45,6 @@ struct Level {
     p: Prolongator,
     galerkin: Galerkin,
     tentative: Tentative,
-    /// Near-null space of this level's nodes (on the finest, the free translations).
-    basis: Vec<Mat3>,
     inv_diag: Vec<Mat3>,
     /// Jacobi damping of the smoother and of the prolongator, `4 / (3 rho(D^-1 A))`.
     omega: f64,
@@ -68,17 +66,26 @@ pub struct Multigrid {
     coarse: Vec<BlockSparse>,
     /// Cholesky factor of the coarsest matrix, dense.
     factor: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
+    /// Near-null space of the finest level: each particle's free translations.
+    fine_basis: Vec<Mat3>,
     /// The finest matrix's pattern (row starts, columns) the hierarchy was made for.
     fine_pattern: (Vec<usize>, Vec<u32>),
     scratch: Mutex<(Vec<Scratch>, DVector<f64>)>,
 }
 
-/// `y = A x`, or with `filter`, `y = S A x`: the filtered `S A S + I - S` on the range
-/// of `S`, where every vector of the finest level lives.
-fn operator(a: &BlockSparse, filter: Option<&Filter>, x: &[Vec3], y: &mut [Vec3], parallel: bool) {
+/// `y_i = g(i, (A x)_i)`, or with `filter`, `g(i, (S A x)_i)`: the filtered
+/// `S A S + I - S` on the range of `S`, where every vector of the finest level lives.
+fn product_then(
+    m: &BlockSparse,
+    filter: Option<&Filter>,
+    x: &[Vec3],
+    y: &mut [Vec3],
+    parallel: bool,
+    g: impl Fn(usize, Vec3) -> Vec3 + Sync,
+) {
     match filter {
-        Some(f) => a.mul_then(x, y, parallel, |r, v| f.project_row(r, v)),
-        None => a.mul(x, y, parallel),
+        Some(f) => m.mul_then(x, y, parallel, |i, v| g(i, f.project_row(i, v))),
+        None => m.mul_then(x, y, parallel, g),
     }
 }
 
@@ -108,7 +115,6 @@ impl Multigrid {
                 p,
                 galerkin,
                 tentative: Tentative::default(),
-                basis: vec![Mat3::identity(); n],
                 inv_diag: vec![Mat3::identity(); n],
                 omega: 0.0,
             });
@@ -124,6 +130,7 @@ impl Multigrid {
             levels,
             coarse,
             factor: None,
+            fine_basis: vec![Mat3::identity(); a.n()],
             fine_pattern: (a.row_starts().to_vec(), a.columns().to_vec()),
             scratch: Mutex::new((scratch, DVector::zeros(3 * n))),
         }
@@ -132,10 +139,6 @@ impl Multigrid {
     /// Whether this hierarchy was made for `a`'s pattern.
     pub fn fits(&self, a: &BlockSparse) -> bool {
         self.fine_pattern.0 == a.row_starts() && self.fine_pattern.1 == a.columns()
-    }
-
-    fn coarsest_nodes(&self, a: &BlockSparse) -> usize {
-        self.coarse.last().unwrap_or(a).n()
     }
 
     /// Number of levels, the coarsest included.
@@ -151,22 +154,22 @@ impl Multigrid {
             let m = if l == 0 { a } else { &done[l - 1] };
             let f = (l == 0).then_some(filter);
             let parallel = parallel && m.n() >= PARALLEL_NODES;
-            let (before, level) = {
-                let (before, after) = self.levels.split_at_mut(l);
-                (before, &mut after[0])
-            };
-            if l == 0 {
-                for (i, b) in level.basis.iter_mut().enumerate() {
-                    *b = filter.free_projection(i);
+            let (above, below) = self.levels.split_at_mut(l);
+            let level = &mut below[0];
+            let basis = match above.last() {
+                Some(up) => &up.tentative.coarse_basis,
+                None => {
+                    for (i, b) in self.fine_basis.iter_mut().enumerate() {
+                        *b = filter.free_projection(i);
+                    }
+                    &self.fine_basis
                 }
-            } else {
-                level.basis.clone_from(&before[l - 1].tentative.coarse_basis);
-            }
+            };
             inverse_diagonal(m, f, &mut level.inv_diag)
                 .map_err(|i| format!("multigrid level {l}: diagonal block {i} is not positive definite"))?;
             let rho = spectral_radius(m, f, &level.inv_diag, &mut scratch.0[l], parallel);
             level.omega = JACOBI_WEIGHT / rho;
-            level.tentative.build(&level.basis, &level.aggregates);
+            level.tentative.build(basis, &level.aggregates);
             smooth_prolongator(level, m, f, parallel);
             level.galerkin.multiply(m, &level.p, &mut rest[0], parallel);
             for (c, empty) in level.tentative.empty.iter().enumerate() {
@@ -177,7 +180,10 @@ impl Multigrid {
         // The factor is made in the storage of the last one.
         let mut dense = match self.factor.take() {
             Some(factor) => factor.unpack(),
-            None => DMatrix::zeros(3 * self.coarsest_nodes(a), 3 * self.coarsest_nodes(a)),
+            None => {
+                let n = 3 * self.coarse.last().unwrap_or(a).n();
+                DMatrix::zeros(n, n)
+            }
         };
         match self.coarse.last() {
             Some(m) => dense_into(m, None, &mut dense),
@@ -237,22 +243,14 @@ impl Multigrid {
         for ((xk, bk), inv) in x.iter_mut().zip(b).zip(&level.inv_diag) {
             *xk = level.omega * (inv * bk);
         }
-        residual(m, f, b, x, r, parallel);
+        product_then(m, f, x, r, parallel, |i, v| b[i] - v);
         level.p.restrict(r, &mut below[0].b, parallel);
         self.cycle(l + 1, a, filter, below, dense, parallel);
         level.p.prolong_add(&below[0].x, x, parallel);
-        residual(m, f, b, x, r, parallel);
+        product_then(m, f, x, r, parallel, |i, v| b[i] - v);
         for ((xk, rk), inv) in x.iter_mut().zip(r.iter()).zip(&level.inv_diag) {
             *xk += level.omega * (inv * rk);
         }
-    }
-}
-
-/// `r = b - A x`.
-fn residual(m: &BlockSparse, f: Option<&Filter>, b: &[Vec3], x: &[Vec3], r: &mut [Vec3], parallel: bool) {
-    match f {
-        Some(f) => m.mul_then(x, r, parallel, |i, v| b[i] - f.project_row(i, v)),
-        None => m.mul_then(x, r, parallel, |i, v| b[i] - v),
     }
 }
 
@@ -283,10 +281,7 @@ fn spectral_radius(
             break;
         }
         x.iter_mut().for_each(|v| *v /= norm);
-        operator(m, f, x, y, parallel);
-        for (yk, inv) in y.iter_mut().zip(inv_diag) {
-            *yk = inv * *yk;
-        }
+        product_then(m, f, x, y, parallel, |i, v| inv_diag[i] * v);
         rho = rho.max(y.iter().map(|v| v.norm_squared()).sum::<f64>().sqrt());
         std::mem::swap(x, y);
     }

@@ -3,12 +3,9 @@
 //! and `P^T r` run in parallel over their output rows.
 
 use super::aggregation::Aggregates;
-use crate::linalg::row_chunks::for_each_row_chunk;
+use crate::linalg::row_chunks::{for_each_entry, for_each_row};
 use crate::linalg::BlockSparse;
 use crate::{Mat3, Vec3};
-use rayon::prelude::*;
-
-const ROWS_PER_TASK: usize = 512;
 
 #[derive(Debug, Clone)]
 pub(super) struct Prolongator {
@@ -92,61 +89,31 @@ impl Prolongator {
 
     /// Fills the values row by row: `f(i, cols, blocks)` writes row `i`.
     pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, &[u32], &mut [Mat3]) + Sync) {
-        let (row_ptr, cols) = (&self.row_ptr, &self.cols);
-        for_each_row_chunk(
-            row_ptr,
-            &mut self.blocks,
-            ROWS_PER_TASK,
-            parallel,
-            |rows, chunk| {
-                let base = row_ptr[rows.start];
-                for i in rows {
-                    let range = row_ptr[i]..row_ptr[i + 1];
-                    f(
-                        i,
-                        &cols[range.clone()],
-                        &mut chunk[range.start - base..range.end - base],
-                    );
-                }
-            },
-        );
+        let cols = &self.cols;
+        for_each_row(&self.row_ptr, &mut self.blocks, parallel, |i, first, row| {
+            f(i, &cols[first..first + row.len()], row)
+        });
     }
 
     /// `y += P x`: a coarse correction brought to the fine nodes.
     pub fn prolong_add(&self, x: &[Vec3], y: &mut [Vec3], parallel: bool) {
-        let run = |(task, out): (usize, &mut [Vec3])| {
-            let first = task * ROWS_PER_TASK;
-            for (k, yi) in out.iter_mut().enumerate() {
-                let mut s = Vec3::zeros();
-                for slot in self.row(first + k) {
-                    s += self.blocks[slot] * x[self.cols[slot] as usize];
-                }
-                *yi += s;
+        for_each_entry(y, parallel, |i, yi| {
+            let mut s = Vec3::zeros();
+            for slot in self.row(i) {
+                s += self.blocks[slot] * x[self.cols[slot] as usize];
             }
-        };
-        if parallel {
-            y.par_chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
-        } else {
-            y.chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
-        }
+            *yi += s;
+        });
     }
 
     /// `out = P^T r`.
     pub fn restrict(&self, r: &[Vec3], out: &mut [Vec3], parallel: bool) {
-        let run = |(task, out): (usize, &mut [Vec3])| {
-            let first = task * ROWS_PER_TASK;
-            for (k, o) in out.iter_mut().enumerate() {
-                let mut s = Vec3::zeros();
-                for (i, slot) in self.column(first + k) {
-                    s += self.blocks[slot].tr_mul(&r[i]);
-                }
-                *o = s;
+        for_each_entry(out, parallel, |a, o| {
+            let mut s = Vec3::zeros();
+            for (i, slot) in self.column(a) {
+                s += self.blocks[slot].tr_mul(&r[i]);
             }
-        };
-        if parallel {
-            out.par_chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
-        } else {
-            out.chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
-        }
+            *o = s;
+        });
     }
 }
