@@ -307,6 +307,45 @@ fn friction_holds_a_sheet_on_a_slope_only_when_mu_exceeds_tan_a() {
     assert!(held.abs() < 1e-3, "held sheet moved {:.3} mm", held * 1e3);
 }
 
+/// A sheet sliding at 1 m/s over a level plate slows down at Coulomb's `mu g` and stops,
+/// never turning back: friction as the implicit step's drag against the sliding.
+#[test]
+fn friction_stops_a_sliding_sheet_as_coulomb_says() {
+    let (mu, v0, g) = (0.5, 1.0, 9.81);
+    let setup = TiltedPlane {
+        angle: 0.0,
+        friction: mu,
+        ..TiltedPlane::default()
+    };
+    let mut scene = setup.build().unwrap();
+    let sim = &mut scene.simulation;
+    let n = sim.positions().len();
+    sim.set_velocities(&vec![Vec3::new(v0, 0.0, 0.0); n]).unwrap();
+    let mean_x = |sim: &Simulation| sim.positions().iter().map(|p| p.x).sum::<f64>() / n as f64;
+    let start = mean_x(sim);
+    let h = setup.time_step;
+    // Backward Euler with Coulomb's law: v_k = v0 - k mu g h until it stops, x += h v_k.
+    let mut expected = 0.0;
+    let mut speed = v0;
+    for step in 1..=60 {
+        speed = (speed - mu * g * h).max(0.0);
+        expected += h * speed;
+        sim.step().unwrap();
+        let v = sim.velocities().iter().map(|v| v.x).sum::<f64>() / n as f64;
+        assert!(
+            (v - speed).abs() < 0.02 * v0,
+            "step {step}: mean speed {v:.4} m/s, Coulomb says {speed:.4} m/s"
+        );
+    }
+    let slid = mean_x(sim) - start;
+    assert!(
+        (slid - expected).abs() < 0.02 * expected,
+        "slid {slid:.4} m, Coulomb says {expected:.4} m"
+    );
+    let fastest = sim.velocities().iter().map(|v| v.norm()).fold(0.0, f64::max);
+    assert!(fastest < 1e-3, "still moving at {fastest} m/s");
+}
+
 #[test]
 fn a_fast_sheet_does_not_pass_through_a_thin_plate() {
     let setup = FallingPlate::default();

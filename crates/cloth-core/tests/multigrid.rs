@@ -75,22 +75,89 @@ fn multigrid_cycle_is_symmetric_and_definite_on_the_free_space() {
     let mut m = Multigrid::new(&a);
     assert!(m.depth() >= 2, "196 particles make more than the coarsest level");
     m.build(&a, &filter, false).expect("build");
-    let dense = dense_preconditioner(&m, &a, &filter);
-
-    let asymmetry = (&dense - dense.transpose()).norm() / dense.norm();
-    assert!(asymmetry < 1e-12, "S M S is not symmetric: {asymmetry:e}");
     // The constrained directions are mapped to zero, and the free space onto itself with
     // positive eigenvalues: adding the identity on the constrained directions gives an SPD
     // matrix.
-    let mut completed = dense.clone();
-    for p in 0..n {
+    assert_symmetric_definite(&m, &a, &filter);
+}
+
+/// The first `keep` of every third particle's plane constraints (a body's contacts).
+fn contacts(n: usize, keep: usize) -> Filter {
+    let mut filter = Filter::new(n, n);
+    for p in (0..n).step_by(3).take(keep) {
+        let normal = Vec3::new(0.1 * (p as f64).sin(), 0.2, 1.0);
+        filter
+            .push(&Constraint {
+                particle: p,
+                kind: ConstraintKind::Plane { normal },
+                velocity: Vec3::zeros(),
+            })
+            .expect("valid constraint");
+    }
+    filter
+}
+
+/// `S M S + I - S` is symmetric with a positive smallest eigenvalue.
+fn assert_symmetric_definite(m: &Multigrid, a: &BlockSparse, filter: &Filter) {
+    let mut dense = dense_preconditioner(m, a, filter);
+    let asymmetry = (&dense - dense.transpose()).norm() / dense.norm();
+    assert!(asymmetry < 1e-12, "S M S is not symmetric: {asymmetry:e}");
+    for p in 0..a.n() {
         let fixed = nalgebra::Matrix3::identity() - filter.free_projection(p);
-        let mut block = completed.fixed_view_mut::<3, 3>(3 * p, 3 * p);
+        let mut block = dense.fixed_view_mut::<3, 3>(3 * p, 3 * p);
         block += fixed;
     }
-    let eig = completed.symmetric_eigen();
-    let smallest = eig.eigenvalues.min();
+    let smallest = dense.symmetric_eigen().eigenvalues.min();
     assert!(smallest > 0.0, "S M S + I - S has eigenvalue {smallest:e}");
+}
+
+/// A re-solve after contacts were let go keeps the first solve's hierarchy: the cycle is
+/// still what CG needs, and the solve reaches the answer of a fresh one.
+#[test]
+fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
+    let a = sheet_matrix(14, 5);
+    let n = a.n();
+    let (held, let_go) = (contacts(n, 60), contacts(n, 40));
+    // The held contacts' friction as a stiff drag on their diagonal, gone when let go.
+    let mut with_drag = a.clone();
+    for p in (0..n).step_by(3).take(60) {
+        let d = with_drag.diag_slot(p);
+        with_drag.blocks_mut()[d] += nalgebra::Matrix3::identity() * 0.5;
+    }
+    let mut without = with_drag.clone();
+    for p in (0..n).step_by(3).skip(40).take(20) {
+        let d = without.diag_slot(p);
+        without.blocks_mut()[d] -= nalgebra::Matrix3::identity() * 0.5;
+    }
+    let mut m = Multigrid::new(&with_drag);
+    m.build(&with_drag, &held, false).expect("build");
+    m.refresh_finest(&without, &let_go).expect("refresh");
+    assert_symmetric_definite(&m, &without, &let_go);
+
+    let b: Vec<Vec3> = (0..n).map(|k| Vec3::new(0.3, (k as f64).cos(), -1.0) * 1e-3).collect();
+    let settings = PcgSettings {
+        rel_tolerance: 1e-10,
+        ..Default::default()
+    };
+    let solve = |pcg: &mut Pcg, a: &BlockSparse, filter: &Filter, x: &mut Vec<Vec3>, fresh: bool| {
+        let mut rhs = b.clone();
+        filter.project(&mut rhs);
+        filter.project(x);
+        let run = if fresh { Pcg::solve } else { Pcg::resolve };
+        let out = run(pcg, a, filter, &rhs, x, &settings, 0.0, false).expect("solve");
+        assert!(out.converged, "{out:?}");
+        out.iterations
+    };
+    let mut pcg = Pcg::new(n);
+    let mut x = vec![Vec3::zeros(); n];
+    solve(&mut pcg, &with_drag, &held, &mut x, true);
+    let kept = solve(&mut pcg, &without, &let_go, &mut x, false);
+    let mut expected = vec![Vec3::zeros(); n];
+    let fresh = solve(&mut Pcg::new(n), &without, &let_go, &mut expected, true);
+    let error = x.iter().zip(&expected).map(|(x, e)| (x - e).norm()).fold(0.0, f64::max);
+    let scale = expected.iter().map(|e| e.norm()).fold(0.0, f64::max);
+    assert!(error < 1e-6 * scale, "kept hierarchy: off by {error:e} of {scale:e}");
+    eprintln!("re-solve with the kept hierarchy: {kept} iterations, afresh from zero: {fresh}");
 }
 
 #[test]

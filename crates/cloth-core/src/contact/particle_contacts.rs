@@ -18,7 +18,7 @@ const CORRECTION_RATE: f64 = 0.3;
 
 /// Sliding speed, m/s, under which Coulomb friction is regularised into viscous drag
 /// `mu p / SLIP_SPEED`: a particle held by friction creeps at most this fast (times the
-/// ratio of the traction to its limit), and the friction never switches discontinuously.
+/// ratio of the traction to its limit).
 pub const SLIP_SPEED: f64 = 1e-4;
 
 /// Speed, m/s, below which a velocity or a reaction impulse (per unit mass) is rounding
@@ -32,8 +32,8 @@ pub enum ContactMode {
     /// Not constrained.
     #[default]
     Free,
-    /// Held by friction: no slip (infinite coefficient) or sliding slower than
-    /// [`SLIP_SPEED`].
+    /// Held by friction: no slip (infinite coefficient), or friction can stop it within
+    /// the step (it creeps slower than [`SLIP_SPEED`]).
     Stick,
     /// Held in the normal direction, sliding against kinetic friction.
     Slide,
@@ -47,8 +47,14 @@ pub(crate) struct ParticleState {
     /// The body pulled on the particle in its last constrained step: it is let go while it
     /// moves away.
     pub released: bool,
-    /// Normal force the body exerted in the last step, N (what friction is measured by).
-    pub pressure: f64,
+    /// The force on the particle in its last step other than the bodies' (elastic,
+    /// gravity, air), N, as the implicit solve applied it: `m dv / h` less the contact's
+    /// reaction and friction. Friction in the next step is set to hold this force, or to
+    /// slide against it.
+    pub demand: Vec3,
+    /// `demand` is from a step of the present motion (not before the first step, nor
+    /// after positions or velocities were set).
+    pub demand_known: bool,
 }
 
 /// A contact constrained in the current step.
@@ -63,19 +69,12 @@ pub(crate) struct ActiveContact {
     pub correction: f64,
     /// Coulomb coefficient (infinite: no slip).
     pub friction: f64,
-    /// Held by friction: a viscous drag `mu p / SLIP_SPEED` (N s/m) against tangential
-    /// motion (0 with no slip, which the constraint holds).
+    /// Friction as a viscous drag against the tangential velocity relative to the body,
+    /// N s/m (see [`ParticleContacts::set_friction`]; 0 with no slip, which the
+    /// constraint holds).
     pub drag: f64,
-    /// Sliding: the kinetic friction force, `mu p` against the sliding direction, N.
-    pub kinetic: Vec3,
-    /// The drag and force already in the system (the matrix and right-hand side take
-    /// differences).
+    /// The drag already in the system (the matrix and right-hand side take differences).
     applied_drag: f64,
-    applied_kinetic: Vec3,
-    /// Normal force friction is measured by, N.
-    pressure: f64,
-    /// The pressure friction uses is not known yet (a new contact): the first solve finds it.
-    fresh: bool,
     /// Still holding the particle (false once released within the step).
     pub live: bool,
     /// A normal reaction below minus this, N, is the body pulling.
@@ -88,23 +87,9 @@ impl ActiveContact {
     pub fn particle(&self) -> usize {
         self.constraint.particle
     }
-    /// Coulomb friction for sticking (drag regularised at [`SLIP_SPEED`]) or for sliding
-    /// along `tangential` (the relative tangential velocity).
-    fn set_friction(&mut self, mode: ContactMode, tangential: &Vec3) {
-        if !self.friction.is_finite() {
-            return;
-        }
-        let limit = self.friction * self.pressure;
-        match tangential.try_normalize(1e-12) {
-            Some(t) if mode == ContactMode::Slide => {
-                self.drag = 0.0;
-                self.kinetic = -limit * t;
-            }
-            _ => {
-                self.drag = limit / SLIP_SPEED;
-                self.kinetic = Vec3::zeros();
-            }
-        }
+    /// The tangential projection of the contact.
+    fn tangential(&self, u: &Vec3) -> Vec3 {
+        u - u.dot(&self.normal) * self.normal
     }
 
     fn pressure(&self) -> f64 {
@@ -142,7 +127,8 @@ impl ParticleContacts {
                     },
                     mode: ContactMode::Free,
                     released: false,
-                    pressure: 0.0,
+                    demand: Vec3::zeros(),
+                    demand_known: false,
                 };
                 n
             ],
@@ -158,7 +144,7 @@ impl ParticleContacts {
             s.proximity = collider.sweep(t, xi, t, xi, f64::INFINITY, reach);
             s.mode = ContactMode::Free;
             s.released = false;
-            s.pressure = 0.0;
+            s.demand_known = false;
         };
         if parallel {
             self.state.par_iter_mut().zip(x).for_each(query);
@@ -184,7 +170,6 @@ impl ParticleContacts {
             if pinned[i] || approach > CONTACT_BAND * p.thickness {
                 s.mode = ContactMode::Free;
                 s.released = false;
-                s.pressure = 0.0;
                 continue;
             }
             if s.released && relative.dot(&n) > NOISE_SPEED {
@@ -192,7 +177,6 @@ impl ParticleContacts {
                 continue;
             }
             s.released = false;
-            let fresh = s.mode == ContactMode::Free;
             // The normal speed prescribed relative to the body, not kept after the step. A
             // particle inside the layer is carried back out over a few steps. One above it
             // keeps its speed towards the body, but lands on the layer rather than crossing
@@ -203,17 +187,12 @@ impl ParticleContacts {
             } else {
                 relative.dot(&n).max(-p.gap() / h).min(0.0)
             };
-            let tangential = relative - relative.dot(&n) * n;
-            let sliding = tangential.norm();
             let (kind, velocity) = if p.friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
                 (ConstraintKind::Fixed, p.velocity + correction * n)
             } else {
-                s.mode = if sliding > SLIP_SPEED {
-                    ContactMode::Slide
-                } else {
-                    ContactMode::Stick
-                };
+                // Until friction is set for the step (implicit) or applied (explicit).
+                s.mode = ContactMode::Slide;
                 (
                     ConstraintKind::Plane { normal: n },
                     (n.dot(&p.velocity) + correction) * n,
@@ -230,18 +209,42 @@ impl ParticleContacts {
                 correction,
                 friction: p.friction,
                 drag: 0.0,
-                kinetic: Vec3::zeros(),
                 applied_drag: 0.0,
-                applied_kinetic: Vec3::zeros(),
-                pressure: s.pressure,
-                fresh,
                 live: true,
                 pull_limit: masses[i] * NOISE_SPEED / h,
                 reaction: Vec3::zeros(),
             });
-            if let Some(c) = self.active.last_mut() {
-                c.set_friction(s.mode, &tangential);
-            }
+        }
+    }
+
+    /// Coulomb friction for an implicit step from `v0`, as a drag `c` against the sliding
+    /// velocity `u` relative to the body. Each contact predicts the step as Coulomb's law
+    /// would end it for the particle alone: it meets the force `d` it met in the last step
+    /// (see [`ParticleState::demand`]; `force` before the first step) and the pressure
+    /// `p = m (u_n' - u_n) / h - d.n` that brings its normal speed `u_n` to the
+    /// constraint's `u_n'`. Friction can take `h mu p / m` off the tangential speed
+    /// `u* = |u + h d_t / m|` it would have without friction: when the slip left,
+    /// `s = u* - h mu p / m`, exceeds [`SLIP_SPEED`], `c = mu p / s` ends it sliding at `s`
+    /// against exactly `mu p`; otherwise `c = mu p / SLIP_SPEED` holds it. One solve
+    /// settles the step: the drag is continuous in the state (no stick or slide to decide
+    /// and re-solve), it cannot turn the sliding back, and within the solve it carries
+    /// each contact's friction to its neighbours. The prediction lags the coupling by a
+    /// step, as `demand` is the last step's.
+    pub fn set_friction(&mut self, h: f64, v0: &[Vec3], masses: &[f64], force: &[Vec3]) {
+        for c in self.active.iter_mut().filter(|c| c.friction.is_finite()) {
+            let i = c.particle();
+            let s = &mut self.state[i];
+            let m = masses[i];
+            let demand = if s.demand_known { s.demand } else { force[i] };
+            let relative = v0[i] - c.body_velocity;
+            let pressure = (m * (c.correction - relative.dot(&c.normal)) / h - demand.dot(&c.normal)).max(0.0);
+            let limit = c.friction * pressure;
+            let slip = c.tangential(&(relative + (h / m) * demand)).norm() - h * limit / m;
+            (c.drag, s.mode) = if slip > SLIP_SPEED {
+                (limit / slip, ContactMode::Slide)
+            } else {
+                (limit / SLIP_SPEED, ContactMode::Stick)
+            };
         }
     }
 
@@ -261,69 +264,19 @@ impl ParticleContacts {
             let s = &mut self.state[c.particle()];
             s.released = true;
             s.mode = ContactMode::Free;
-            s.pressure = 0.0;
             c.live = false;
             released += 1;
         }
         released
     }
 
-    /// Friction from the step just solved: a new contact takes its pressure from the
-    /// reaction; a held contact that had to slip faster than [`SLIP_SPEED`] (its drag
-    /// exceeding `mu p`) slides; a sliding one whose sliding turned back sticks. Returns
-    /// how many changed (the step is then solved again). `v_new` is the solved velocity.
-    pub fn settle_friction(&mut self, v_new: impl Fn(usize) -> Vec3) -> usize {
-        let mut changed = 0;
-        for c in self
-            .active
-            .iter_mut()
-            .filter(|c| c.live && c.friction.is_finite())
-        {
-            let rel = v_new(c.particle()) - c.body_velocity;
-            let tangential = rel - rel.dot(&c.normal) * c.normal;
-            let mut mode = if c.kinetic == Vec3::zeros() {
-                ContactMode::Stick
-            } else {
-                ContactMode::Slide
-            };
-            let mut update = false;
-            if c.fresh {
-                c.fresh = false;
-                let pressure = c.pressure();
-                if pressure > c.pull_limit {
-                    c.pressure = pressure;
-                    update = true;
-                }
-            }
-            if mode == ContactMode::Stick && tangential.norm() > SLIP_SPEED * (1.0 + 1e-6) && c.pressure > 0.0
-            {
-                mode = ContactMode::Slide;
-                update = true;
-            } else if mode == ContactMode::Slide && tangential.dot(&c.kinetic) > 0.0 {
-                mode = ContactMode::Stick;
-                update = true;
-            }
-            if update {
-                c.set_friction(mode, &tangential);
-                changed += 1;
-            }
-        }
-        changed
-    }
-
     /// Brings the friction in the system up to date: the drag `-c P (v - v_body)` (P the
-    /// tangential projection) as `b += h F(v0)`, `A += h c P`, and the kinetic force as
-    /// `b += h F`, for the change in each (a released contact's go to zero).
+    /// tangential projection) as `b += h F(v0)`, `A += h c P`, for its change (a released
+    /// contact's goes to zero).
     pub fn apply_friction(&mut self, v0: &[Vec3], b: &mut [Vec3], a: &mut BlockSparse, h: f64) {
         for c in &mut self.active {
-            let (drag, kinetic) = if c.live {
-                (c.drag, c.kinetic)
-            } else {
-                (0.0, Vec3::zeros())
-            };
+            let drag = if c.live { c.drag } else { 0.0 };
             let i = c.particle();
-            b[i] += h * (kinetic - c.applied_kinetic);
-            c.applied_kinetic = kinetic;
             let change = drag - c.applied_drag;
             if change == 0.0 {
                 continue;
@@ -378,7 +331,7 @@ impl ParticleContacts {
     /// Coulomb friction for the explicit integrators, as an impulse from this step's
     /// pressure that can stop the sliding but never turn it back (Bridson et al. 2002); a
     /// drag of `mu p / SLIP_SPEED` would be far beyond an explicit step's stability.
-    pub fn explicit_friction(&self, masses: &[f64], v_new: &mut [Vec3], h: f64) {
+    pub fn explicit_friction(&mut self, masses: &[f64], v_new: &mut [Vec3], h: f64) {
         for c in self.active.iter().filter(|c| c.live && c.friction.is_finite()) {
             let i = c.particle();
             let n = c.normal;
@@ -388,25 +341,38 @@ impl ParticleContacts {
             let brake = c.friction * c.reaction.dot(&n).max(0.0) * h / masses[i];
             let kept = if speed <= brake { 0.0 } else { 1.0 - brake / speed };
             v_new[i] -= (1.0 - kept) * tangential;
+            if kept == 0.0 {
+                self.state[i].mode = ContactMode::Stick;
+            }
         }
     }
 
-    /// Keeps each contact's pressure for the next step's friction, and takes the push-out
-    /// speed back out of the kept velocity. Contacts released within the step are no
-    /// longer active and keep their free motion.
+    /// Takes the push-out speed back out of the kept velocity. Contacts released within
+    /// the step are no longer active and keep their free motion.
     pub fn finish(&mut self, v_new: &mut [Vec3]) {
         for c in self.active.iter().filter(|c| c.live) {
-            let state = &mut self.state[c.particle()];
-            state.pressure = c.reaction.dot(&c.normal).max(0.0);
-            if c.friction.is_finite() {
-                state.mode = if c.kinetic == Vec3::zeros() {
-                    ContactMode::Stick
-                } else {
-                    ContactMode::Slide
-                };
-            }
             v_new[c.particle()] -= c.correction * c.normal;
         }
+    }
+
+    /// Keeps, after an implicit step from `v0` to `v_new`, the force each particle met
+    /// other than the bodies' (see [`ParticleState::demand`]) for the next step's friction.
+    pub fn record_demand(&mut self, v0: &[Vec3], v_new: impl Fn(usize) -> Vec3, masses: &[f64], h: f64) {
+        for (i, s) in self.state.iter_mut().enumerate() {
+            s.demand = (masses[i] / h) * (v_new(i) - v0[i]);
+            s.demand_known = true;
+        }
+        for c in self.active.iter().filter(|c| c.live) {
+            let i = c.particle();
+            let friction = -c.applied_drag * c.tangential(&(v_new(i) - c.body_velocity));
+            self.state[i].demand -= c.reaction + friction;
+        }
+    }
+
+    /// Drops the recorded demands: the next implicit step predicts friction from the forces
+    /// at its start.
+    pub fn forget_demand(&mut self) {
+        self.state.iter_mut().for_each(|s| s.demand_known = false);
     }
 
     /// The end-of-step test along every particle's path from `x` (time `t0`) to `x_new`

@@ -220,6 +220,41 @@ impl Pcg {
         abs_tolerance: f64,
         parallel: bool,
     ) -> Result<PcgOutcome, String> {
+        self.run(a, filter, b, x, settings, abs_tolerance, parallel, true)
+    }
+
+    /// As [`Pcg::solve`], after a solve of a system that differs from this one only in a
+    /// few particles' rows, and whose filter constrained those particles more (a contact
+    /// let go within a step). The multigrid hierarchy of that solve is kept, only its
+    /// finest smoother brought up to date: its coarse spaces miss the freed directions
+    /// and its coarse matrices the changed rows, which the smoother makes good, at a few
+    /// iterations rather than a whole setup. The cycle stays symmetric and definite.
+    #[allow(clippy::too_many_arguments)]
+    pub fn resolve(
+        &mut self,
+        a: &BlockSparse,
+        filter: &Filter,
+        b: &[Vec3],
+        x: &mut [Vec3],
+        settings: &PcgSettings,
+        abs_tolerance: f64,
+        parallel: bool,
+    ) -> Result<PcgOutcome, String> {
+        self.run(a, filter, b, x, settings, abs_tolerance, parallel, false)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &mut self,
+        a: &BlockSparse,
+        filter: &Filter,
+        b: &[Vec3],
+        x: &mut [Vec3],
+        settings: &PcgSettings,
+        abs_tolerance: f64,
+        parallel: bool,
+        rebuild: bool,
+    ) -> Result<PcgOutcome, String> {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
         blocks_mut(self.rhs.as_mut()).copy_from_slice(b);
         blocks_mut(self.sol.as_mut()).copy_from_slice(x);
@@ -234,12 +269,12 @@ impl Pcg {
         let operator = filtered_product(a, filter, parallel);
         let mut result = None;
         if settings.preconditioner == Preconditioner::Multigrid {
-            let multigrid = match &mut self.multigrid {
-                Some(m) if m.fits(a) => m,
-                slot => slot.insert(Multigrid::new(a)),
-            };
-            multigrid.build(a, filter, parallel)?;
-            let multigrid = &*multigrid;
+            match &mut self.multigrid {
+                Some(m) if m.fits(a) && !rebuild => m.refresh_finest(a, filter)?,
+                Some(m) if m.fits(a) => m.build(a, filter, parallel)?,
+                slot => slot.insert(Multigrid::new(a)).build(a, filter, parallel)?,
+            }
+            let multigrid = self.multigrid.as_ref().expect("made above");
             let cycle = BlockMap {
                 n: a.n(),
                 f: |x: &[Vec3], y: &mut [Vec3]| multigrid.apply(a, filter, x, y, parallel),

@@ -27,6 +27,7 @@ impl Simulation {
             }
             released = c.release_pulling();
             c.explicit_friction(masses, &mut ws.v_new, h);
+            c.forget_demand();
         }
         if released > 0 {
             self.refill_filter(h)?;

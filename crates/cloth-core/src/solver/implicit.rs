@@ -4,7 +4,7 @@
 
 use super::assembly::StiffnessTarget;
 use super::{Simulation, StepStats};
-use crate::linalg::BlockSparse;
+use crate::linalg::{BlockSparse, Pcg};
 use crate::{Mat3, Vec3};
 use std::time::Instant;
 
@@ -67,9 +67,8 @@ impl Simulation {
     }
 
     /// Writes the next state into the workspace. Contacts whose body would have to pull
-    /// are let go, and new contacts given the friction of the pressure just found, and the
-    /// step solved again, up to [`RELEASE_PASSES`] times: a contact never holds the cloth to
-    /// the body, and friction acts from the first step of a contact.
+    /// are let go and the step solved again, up to [`RELEASE_PASSES`] times: a contact
+    /// never holds the cloth to the body.
     pub(super) fn implicit_step(&mut self, h: f64, velocity_accuracy: f64) -> Result<StepStats, String> {
         let start = Instant::now();
         let potential = self.assemble_system();
@@ -88,6 +87,10 @@ impl Simulation {
             potential_energy: potential,
             ..Default::default()
         };
+        if let Some(contacts) = &mut self.contacts {
+            let masses = self.model.masses();
+            contacts.particles.set_friction(h, &self.v, masses, &self.ws.force);
+        }
         for pass in 0..=RELEASE_PASSES {
             if let Some(contacts) = &mut self.contacts {
                 // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
@@ -106,7 +109,10 @@ impl Simulation {
                 ws.filter.project(&mut ws.rhs);
             }
             ws.filter.project(&mut ws.y);
-            let outcome = ws.pcg.solve(
+            // A re-solve only lets contacts go: the first solve's preconditioner serves.
+            let solve = if pass == 0 { Pcg::solve } else { Pcg::resolve };
+            let outcome = solve(
+                &mut ws.pcg,
                 &self.matrix,
                 &ws.filter,
                 &ws.rhs,
@@ -129,15 +135,18 @@ impl Simulation {
                 h,
                 s.pcg.rel_tolerance,
             );
-            let (y, z, v) = (&ws.y, &ws.z, &self.v);
-            let changed = contacts.particles.release_pulling()
-                + contacts.particles.settle_friction(|j| v[j] + y[j] + z[j]);
-            if pass == RELEASE_PASSES || changed == 0 {
+            if contacts.particles.release_pulling() == 0 || pass == RELEASE_PASSES {
                 break;
             }
             self.refill_filter(h)?;
         }
         let ws = &mut self.ws;
+        if let Some(contacts) = &mut self.contacts {
+            let (y, z, v) = (&ws.y, &ws.z, &self.v);
+            contacts
+                .particles
+                .record_demand(v, |j| v[j] + y[j] + z[j], self.model.masses(), h);
+        }
         for i in 0..self.x.len() {
             let v: Vec3 = self.v[i] + ws.y[i] + ws.z[i];
             ws.v_new[i] = v;

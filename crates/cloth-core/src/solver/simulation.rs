@@ -260,6 +260,10 @@ impl Simulation {
             });
         }
         self.v.copy_from_slice(v);
+        // Friction predicts from the last step's forces, which were of the old motion.
+        if let Some(c) = &mut self.contacts {
+            c.particles.forget_demand();
+        }
         Ok(())
     }
     pub fn kinetic_energy(&self) -> f64 {

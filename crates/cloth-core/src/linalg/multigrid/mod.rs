@@ -196,6 +196,20 @@ impl Multigrid {
         Ok(())
     }
 
+    /// Brings the finest smoother up to date with `a` and `filter`, the rest of the
+    /// hierarchy kept from the last build (see [`crate::linalg::Pcg::resolve`]). The
+    /// filter may only have freed directions since: the coarse corrections then stay in
+    /// its range.
+    pub fn refresh_finest(&mut self, a: &BlockSparse, filter: &Filter) -> Result<(), String> {
+        let inv_diag = match self.levels.first_mut() {
+            Some(level) => &mut level.inv_diag,
+            // A single level is the dense factor of the filtered matrix itself.
+            None => return self.build(a, filter, false),
+        };
+        inverse_diagonal(a, Some(filter), inv_diag)
+            .map_err(|i| format!("multigrid level 0: diagonal block {i} is not positive definite"))
+    }
+
     /// `x = M b`, one V-cycle; `b` and `x` are in the range of `filter`.
     pub fn apply(&self, a: &BlockSparse, filter: &Filter, b: &[Vec3], x: &mut [Vec3], parallel: bool) {
         // A panic inside a cycle leaves nothing half-done in the scratch: every vector in
