@@ -109,8 +109,8 @@ impl Galerkin {
         coarse.fill_rows(parallel, |a_c, first, row| {
             row.fill(Mat3::zeros());
             let mut k = terms_ptr[a_c];
-            for (i, q) in p.column(a_c) {
-                let pt = p.blocks()[q].transpose();
+            for (i, block) in p.column(a_c) {
+                let pt = block.transpose();
                 for t in ap_ptr[i]..ap_ptr[i + 1] {
                     row[terms[k] as usize - first] += pt * ap[t];
                     k += 1;

@@ -35,8 +35,8 @@ const MAX_LEVELS: usize = 32;
 const POWER_ITERATIONS: usize = 10;
 /// Jacobi damping and prolongator smoothing weight, over that spectral radius.
 const JACOBI_WEIGHT: f64 = 4.0 / 3.0;
-/// Levels with fewer nodes run sequentially: their work is smaller than a thread's wake-up.
-const PARALLEL_NODES: usize = 4096;
+/// Levels storing fewer blocks run sequentially: their work is smaller than a thread's wake-up.
+const PARALLEL_BLOCKS: usize = 16_384;
 
 /// One level above the coarsest: its smoother and its prolongator to the next.
 #[derive(Debug, Clone)]
@@ -153,7 +153,7 @@ impl Multigrid {
             let (done, rest) = self.coarse.split_at_mut(l);
             let m = if l == 0 { a } else { &done[l - 1] };
             let f = (l == 0).then_some(filter);
-            let parallel = parallel && m.n() >= PARALLEL_NODES;
+            let parallel = parallel && m.nnz_blocks() >= PARALLEL_BLOCKS;
             let (above, below) = self.levels.split_at_mut(l);
             let level = &mut below[0];
             let basis = match above.last() {
@@ -252,7 +252,7 @@ impl Multigrid {
         } else {
             (&self.coarse[l - 1], None)
         };
-        let parallel = parallel && m.n() >= PARALLEL_NODES;
+        let parallel = parallel && m.nnz_blocks() >= PARALLEL_BLOCKS;
         let r = &mut here.r;
         for ((xk, bk), inv) in x.iter_mut().zip(b).zip(&level.inv_diag) {
             *xk = level.omega * (inv * bk);

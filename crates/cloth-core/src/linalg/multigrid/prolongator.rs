@@ -13,11 +13,13 @@ pub(super) struct Prolongator {
     row_ptr: Vec<usize>,
     cols: Vec<u32>,
     blocks: Vec<Mat3>,
-    /// For each coarse node, the storage slots of its column, in fine-row order.
+    /// `P^T` by rows: for each coarse node its column's slots, in fine-row order, ...
     col_ptr: Vec<usize>,
     col_slots: Vec<u32>,
-    /// Fine row of each slot.
-    slot_row: Vec<u32>,
+    /// ... the fine row of each, ...
+    col_rows: Vec<u32>,
+    /// ... and a copy of its blocks, so `P^T r` streams through memory as `P x` does.
+    col_blocks: Vec<Mat3>,
 }
 
 impl Prolongator {
@@ -48,23 +50,24 @@ impl Prolongator {
         }
         let mut fill = col_ptr.clone();
         let mut col_slots = vec![0u32; cols.len()];
-        let mut slot_row = vec![0u32; cols.len()];
+        let mut col_rows = vec![0u32; cols.len()];
         for i in 0..n {
             for s in row_ptr[i]..row_ptr[i + 1] {
                 let c = cols[s] as usize;
                 col_slots[fill[c]] = s as u32;
+                col_rows[fill[c]] = i as u32;
                 fill[c] += 1;
-                slot_row[s] = i as u32;
             }
         }
         Self {
             coarse,
             blocks: vec![Mat3::zeros(); cols.len()],
+            col_blocks: vec![Mat3::zeros(); cols.len()],
             row_ptr,
             cols,
             col_ptr,
             col_slots,
-            slot_row,
+            col_rows,
         }
     }
 
@@ -80,11 +83,13 @@ impl Prolongator {
     pub fn blocks(&self) -> &[Mat3] {
         &self.blocks
     }
-    /// The slots of coarse column `a`, with their fine rows.
-    pub fn column(&self, a: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
-        self.col_slots[self.col_ptr[a]..self.col_ptr[a + 1]]
+    /// The blocks of coarse column `a`, with their fine rows.
+    pub fn column(&self, a: usize) -> impl Iterator<Item = (usize, &Mat3)> + '_ {
+        let range = self.col_ptr[a]..self.col_ptr[a + 1];
+        self.col_rows[range.clone()]
             .iter()
-            .map(|&s| (self.slot_row[s as usize] as usize, s as usize))
+            .zip(&self.col_blocks[range])
+            .map(|(&i, block)| (i as usize, block))
     }
 
     /// Fills the values row by row: `f(i, cols, blocks)` writes row `i`.
@@ -93,6 +98,8 @@ impl Prolongator {
         for_each_row(&self.row_ptr, &mut self.blocks, parallel, |i, first, row| {
             f(i, &cols[first..first + row.len()], row)
         });
+        let (blocks, slots) = (&self.blocks, &self.col_slots);
+        for_each_entry(&mut self.col_blocks, parallel, |k, b| *b = blocks[slots[k] as usize]);
     }
 
     /// `y += P x`: a coarse correction brought to the fine nodes.
@@ -110,8 +117,8 @@ impl Prolongator {
     pub fn restrict(&self, r: &[Vec3], out: &mut [Vec3], parallel: bool) {
         for_each_entry(out, parallel, |a, o| {
             let mut s = Vec3::zeros();
-            for (i, slot) in self.column(a) {
-                s += self.blocks[slot].tr_mul(&r[i]);
+            for (i, block) in self.column(a) {
+                s += block.tr_mul(&r[i]);
             }
             *o = s;
         });
