@@ -134,7 +134,9 @@ fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
     m.refresh_finest(&without, &let_go).expect("refresh");
     assert_symmetric_definite(&m, &without, &let_go);
 
-    let b: Vec<Vec3> = (0..n).map(|k| Vec3::new(0.3, (k as f64).cos(), -1.0) * 1e-3).collect();
+    let b: Vec<Vec3> = (0..n)
+        .map(|k| Vec3::new(0.3, (k as f64).cos(), -1.0) * 1e-3)
+        .collect();
     let settings = PcgSettings {
         rel_tolerance: 1e-10,
         ..Default::default()
@@ -154,9 +156,16 @@ fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
     let kept = solve(&mut pcg, &without, &let_go, &mut x, false);
     let mut expected = vec![Vec3::zeros(); n];
     let fresh = solve(&mut Pcg::new(n), &without, &let_go, &mut expected, true);
-    let error = x.iter().zip(&expected).map(|(x, e)| (x - e).norm()).fold(0.0, f64::max);
+    let error = x
+        .iter()
+        .zip(&expected)
+        .map(|(x, e)| (x - e).norm())
+        .fold(0.0, f64::max);
     let scale = expected.iter().map(|e| e.norm()).fold(0.0, f64::max);
-    assert!(error < 1e-6 * scale, "kept hierarchy: off by {error:e} of {scale:e}");
+    assert!(
+        error < 1e-6 * scale,
+        "kept hierarchy: off by {error:e} of {scale:e}"
+    );
     eprintln!("re-solve with the kept hierarchy: {kept} iterations, afresh from zero: {fresh}");
 }
 

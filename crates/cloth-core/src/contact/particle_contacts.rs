@@ -237,7 +237,8 @@ impl ParticleContacts {
             let m = masses[i];
             let demand = if s.demand_known { s.demand } else { force[i] };
             let relative = v0[i] - c.body_velocity;
-            let pressure = (m * (c.correction - relative.dot(&c.normal)) / h - demand.dot(&c.normal)).max(0.0);
+            let pressure =
+                (m * (c.correction - relative.dot(&c.normal)) / h - demand.dot(&c.normal)).max(0.0);
             let limit = c.friction * pressure;
             let slip = c.tangential(&(relative + (h / m) * demand)).norm() - h * limit / m;
             (c.drag, s.mode) = if slip > SLIP_SPEED {

@@ -89,7 +89,9 @@ impl Simulation {
         };
         if let Some(contacts) = &mut self.contacts {
             let masses = self.model.masses();
-            contacts.particles.set_friction(h, &self.v, masses, &self.ws.force);
+            contacts
+                .particles
+                .set_friction(h, &self.v, masses, &self.ws.force);
         }
         for pass in 0..=RELEASE_PASSES {
             if let Some(contacts) = &mut self.contacts {

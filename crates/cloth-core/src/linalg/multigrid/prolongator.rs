@@ -99,7 +99,9 @@ impl Prolongator {
             f(i, &cols[first..first + row.len()], row)
         });
         let (blocks, slots) = (&self.blocks, &self.col_slots);
-        for_each_entry(&mut self.col_blocks, parallel, |k, b| *b = blocks[slots[k] as usize]);
+        for_each_entry(&mut self.col_blocks, parallel, |k, b| {
+            *b = blocks[slots[k] as usize]
+        });
     }
 
     /// `y += P x`: a coarse correction brought to the fine nodes.
