@@ -118,6 +118,7 @@ impl Collider for Bodies {
                     normal: pose.rotation * f.normal,
                     velocity: body.motion().velocity_at(t, &(0.5 * (a + b))),
                     thickness: body.thickness(),
+                    friction: body.friction(),
                 });
             }
         }

@@ -62,6 +62,8 @@ pub struct SharpFeature {
     /// Velocity of the feature (at its midpoint), m/s.
     pub velocity: Vec3,
     pub thickness: f64,
+    /// The body's Coulomb coefficient (infinite: no slip).
+    pub friction: f64,
 }
 
 /// Rigid bodies as the solver needs them. Implementations answer queries only; the solver

@@ -3,16 +3,22 @@
 //! feature under a cloth triangle, closer than the contact thickness, pushes the triangle
 //! out through a stiff one-sided spring on the gap, shared among the triangle's particles by
 //! barycentric weight and part of the implicit solve (so the cloth draped over an edge
-//! rests on it instead of being kicked off every step). A feature found through a triangle
+//! rests on it instead of being kicked off every step), with Coulomb friction against the
+//! triangle's sliding over it. A feature found through a triangle
 //! at the end of a step is pushed back out at once, with an inelastic impulse (Bridson,
 //! Fedkiw & Anderson 2002).
 
+use super::particle_contacts::SLIP_SPEED;
 use super::SharpFeature;
 use crate::linalg::BlockSparse;
-use crate::Vec3;
+use crate::{Mat3, Vec3};
 
 /// Features within `(1 + BAND)` thicknesses of a triangle are in contact.
 const BAND: f64 = 0.5;
+
+/// The largest Coulomb coefficient a feature's friction takes: an infinite one (no slip)
+/// would be an infinite drag; ten holds the cloth against anything it meets.
+const MAX_FRICTION: f64 = 10.0;
 
 /// A triangle is skipped unless some vertex is within its longest edge plus the largest
 /// contact thickness of a body (by the particles' gap bounds).
@@ -33,7 +39,9 @@ pub(crate) struct FeatureContact {
     pub normal: Vec3,
     /// The feature's deepest point under the triangle.
     pub point: Vec3,
+    pub velocity: Vec3,
     pub thickness: f64,
+    pub friction: f64,
 }
 
 impl FeatureContact {
@@ -77,7 +85,9 @@ pub(crate) fn detect_features(
                         weights: hit.weights,
                         normal: hit.normal,
                         point: hit.point,
+                        velocity: f.velocity,
                         thickness: f.thickness,
+                        friction: f.friction,
                     });
                 }
             }
@@ -86,8 +96,14 @@ pub(crate) fn detect_features(
 }
 
 /// The penalty `E = k/2 (d - g)^2` of each contact whose gap `g` is under its thickness
-/// `d`: forces into `force`, `K v` into `kv`, and `scale K` into `matrix` (K = k w w^T n n^T
-/// with the weights and normal frozen, so it is PSD). Returns the energy.
+/// `d`: forces into `force` and `K v` into `kv` (K = k w w^T n n^T with the weights and
+/// normal frozen, so it is PSD). For an implicit step of length `h`, also `h^2 K` into the
+/// matrix and the friction: a drag `c = mu p / max(|u|, SLIP_SPEED)` against the
+/// triangle's tangential velocity `u` over the feature at the step's start, `p` the
+/// spring's push, so it slides against `mu p` and is held when slower than
+/// [`SLIP_SPEED`]; its force goes into `force` and `h c w w^T (I - n n^T)` into the
+/// matrix. An explicit step would need that drag to be tiny to stay stable, so it has no
+/// friction at features. Returns the energy.
 pub(crate) fn add_penalty(
     contacts: &[FeatureContact],
     stiffness: f64,
@@ -95,7 +111,7 @@ pub(crate) fn add_penalty(
     v: &[Vec3],
     force: &mut [Vec3],
     kv: &mut [Vec3],
-    mut matrix: Option<(&mut BlockSparse, f64)>,
+    mut implicit: Option<(&mut BlockSparse, f64)>,
 ) -> f64 {
     let mut energy = 0.0;
     for c in contacts {
@@ -114,14 +130,22 @@ pub(crate) fn add_penalty(
             force[t[a]] += (stiffness * depth * w[a]) * n;
             kv[t[a]] += (stiffness * w[a] * closing) * n;
         }
-        if let Some((m, scale)) = matrix.as_mut() {
-            let nn = n * n.transpose();
-            for a in 0..3 {
-                for b in 0..3 {
-                    // Both particles share the triangle, so the block exists.
-                    if let Some(slot) = m.slot(t[a], t[b]) {
-                        m.blocks_mut()[slot] += (*scale * stiffness * w[a] * w[b]) * nn;
-                    }
+        let Some((m, h)) = implicit.as_mut() else {
+            continue;
+        };
+        let tangential = Mat3::identity() - n * n.transpose();
+        let relative = (0..3).map(|k| w[k] * v[t[k]]).sum::<Vec3>() - c.velocity;
+        let sliding = tangential * relative;
+        let drag = c.friction.min(MAX_FRICTION) * stiffness * depth / sliding.norm().max(SLIP_SPEED);
+        for a in 0..3 {
+            force[t[a]] -= (drag * w[a]) * sliding;
+        }
+        let block = (*h * *h * stiffness) * (n * n.transpose()) + (*h * drag) * tangential;
+        for a in 0..3 {
+            for b in 0..3 {
+                // Both particles share the triangle, so the block exists.
+                if let Some(slot) = m.slot(t[a], t[b]) {
+                    m.blocks_mut()[slot] += (w[a] * w[b]) * block;
                 }
             }
         }
@@ -293,6 +317,7 @@ mod tests {
             normal: Vec3::z(),
             velocity: Vec3::zeros(),
             thickness: 0.01,
+            friction: 0.5,
         }
     }
     const TRI: [Vec3; 3] = [
@@ -300,6 +325,55 @@ mod tests {
         Vec3::new(1.0, 0.0, 0.1),
         Vec3::new(0.0, 1.0, 0.1),
     ];
+
+    /// Penalty and friction of a feature 4 mm into the 10 mm layer under a triangle
+    /// moving at `v` (every vertex), with and without an implicit step.
+    fn penalty_with(v: Vec3, implicit: bool) -> (Vec<Vec3>, BlockSparse) {
+        let contact = FeatureContact {
+            triangle: [0, 1, 2],
+            weights: [0.2, 0.3, 0.5],
+            normal: Vec3::z(),
+            point: Vec3::zeros(),
+            velocity: Vec3::zeros(),
+            thickness: 0.01,
+            friction: 0.5,
+        };
+        let x = [Vec3::new(0.0, 0.0, 0.006); 3];
+        let (mut force, mut kv) = (vec![Vec3::zeros(); 3], vec![Vec3::zeros(); 3]);
+        let mut m = BlockSparse::from_pairs(3, [(0, 1), (1, 2), (0, 2)]);
+        let target = implicit.then_some((&mut m, 0.01));
+        add_penalty(&[contact], 100.0, &x, &[v; 3], &mut force, &mut kv, target);
+        (force, m)
+    }
+
+    #[test]
+    fn feature_friction_is_coulomb_against_the_sliding() {
+        let (w, k, depth, mu, h) = ([0.2, 0.3, 0.5], 100.0, 0.004, 0.5, 0.01);
+        let p = k * depth;
+        // Sliding along x (and closing along the normal, which friction ignores): each
+        // vertex takes its share of mu p against the sliding, and of the push along n.
+        let (force, m) = penalty_with(Vec3::new(0.3, 0.0, -0.1), true);
+        let drag = mu * p / 0.3;
+        for a in 0..3 {
+            let expected = Vec3::new(-mu * p * w[a], 0.0, p * w[a]);
+            assert!((force[a] - expected).norm() < 1e-12, "{a}: {:?}", force[a]);
+            for b in 0..3 {
+                let slot = m.slot(a, b).expect("triangle block");
+                let tangential = Mat3::from_diagonal(&Vec3::new(1.0, 1.0, 0.0));
+                let normal = Mat3::from_diagonal(&Vec3::new(0.0, 0.0, 1.0));
+                let expected = w[a] * w[b] * (h * h * k * normal + h * drag * tangential);
+                assert!((m.blocks()[slot] - expected).norm() < 1e-12, "block {a}{b}");
+            }
+        }
+        // Slower than SLIP_SPEED: held by a drag of mu p / SLIP_SPEED.
+        let slow = 0.5 * SLIP_SPEED;
+        let (force, _) = penalty_with(Vec3::new(0.0, slow, 0.0), true);
+        let total: Vec3 = force.iter().sum();
+        assert!((total.y + mu * p * 0.5).abs() < 1e-12, "held by {total:?}");
+        // No friction without an implicit step.
+        let (force, _) = penalty_with(Vec3::new(0.3, 0.0, 0.0), false);
+        assert!(force.iter().all(|f| f.x == 0.0 && f.y == 0.0), "{force:?}");
+    }
 
     #[test]
     fn corner_under_a_triangle() {

@@ -77,14 +77,15 @@ impl Contacts {
         self.feature_hits.len()
     }
 
-    /// The feature penalty's forces, `K v` and (with a matrix) `scale K`; returns its energy.
+    /// The feature penalty's forces and `K v`, and for an implicit step of length `h` its
+    /// matrix terms and friction (see [`feature_contacts::add_penalty`]); returns its energy.
     pub fn add_feature_penalty(
         &self,
         x: &[Vec3],
         v: &[Vec3],
         force: &mut [Vec3],
         kv: &mut [Vec3],
-        matrix: Option<(&mut crate::linalg::BlockSparse, f64)>,
+        implicit: Option<(&mut crate::linalg::BlockSparse, f64)>,
     ) -> f64 {
         feature_contacts::add_penalty(
             &self.feature_hits,
@@ -93,7 +94,7 @@ impl Contacts {
             v,
             force,
             kv,
-            matrix,
+            implicit,
         )
     }
 

@@ -47,9 +47,9 @@ pub(crate) struct ParticleState {
     /// The body pulled on the particle in its last constrained step: it is let go while it
     /// moves away.
     pub released: bool,
-    /// The force on the particle in its last step other than the bodies' (elastic,
-    /// gravity, air), N, as the implicit solve applied it: `m dv / h` less the contact's
-    /// reaction and friction. Friction in the next step is set to hold this force, or to
+    /// The force on the particle in its last step other than its contact's (elastic,
+    /// gravity, air, sharp features), N, as the implicit solve applied it: `m dv / h` less
+    /// the contact's reaction and friction. Friction in the next step is set to hold this force, or to
     /// slide against it.
     pub demand: Vec3,
     /// `demand` is from a step of the present motion (not before the first step, nor
@@ -357,7 +357,7 @@ impl ParticleContacts {
     }
 
     /// Keeps, after an implicit step from `v0` to `v_new`, the force each particle met
-    /// other than the bodies' (see [`ParticleState::demand`]) for the next step's friction.
+    /// other than its contact's (see [`ParticleState::demand`]) for the next step's friction.
     pub fn record_demand(&mut self, v0: &[Vec3], v_new: impl Fn(usize) -> Vec3, masses: &[f64], h: f64) {
         for (i, s) in self.state.iter_mut().enumerate() {
             s.demand = (masses[i] / h) * (v_new(i) - v0[i]);

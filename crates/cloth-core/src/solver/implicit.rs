@@ -55,8 +55,8 @@ impl Simulation {
             s.parallel,
         );
         if let Some(contacts) = &self.contacts {
-            let matrix = with_stiffness.then_some((&mut self.matrix, h * h));
-            energy += contacts.add_feature_penalty(&self.x, &self.v, &mut ws.force, &mut ws.hv, matrix);
+            let implicit = with_stiffness.then_some((&mut self.matrix, h));
+            energy += contacts.add_feature_penalty(&self.x, &self.v, &mut ws.force, &mut ws.hv, implicit);
         }
         energy
     }
