@@ -102,7 +102,10 @@ pub(crate) fn detect_features(
 /// triangle's tangential velocity `u` over the feature at the step's start, `p` the
 /// spring's push, so it slides against `mu p` and is held when slower than
 /// [`SLIP_SPEED`]; its force goes into `force` and `h c w w^T (I - n n^T)` into the
-/// matrix. An explicit step would need that drag to be tiny to stay stable, so it has no
+/// matrix. Unlike the particles' friction it predicts nothing: the drag lags the sliding
+/// speed by a step, so a triangle slowing down feels less than `mu p`, and one pulled
+/// free of its hold (by more than `mu p`) gains speed from [`SLIP_SPEED`] by the ratio
+/// of the pull to `mu p` each step. An explicit step would need that drag to be tiny to stay stable, so it has no
 /// friction at features. Returns the energy.
 pub(crate) fn add_penalty(
     contacts: &[FeatureContact],
@@ -326,15 +329,16 @@ mod tests {
         Vec3::new(0.0, 1.0, 0.1),
     ];
 
-    /// Penalty and friction of a feature 4 mm into the 10 mm layer under a triangle
-    /// moving at `v` (every vertex), with and without an implicit step.
+    /// Penalty and friction of a feature moving at 0.2 m/s along x, 4 mm into the 10 mm
+    /// layer under a triangle moving at `v` (every vertex), with and without an implicit
+    /// step.
     fn penalty_with(v: Vec3, implicit: bool) -> (Vec<Vec3>, BlockSparse) {
         let contact = FeatureContact {
             triangle: [0, 1, 2],
             weights: [0.2, 0.3, 0.5],
             normal: Vec3::z(),
             point: Vec3::zeros(),
-            velocity: Vec3::zeros(),
+            velocity: Vec3::new(0.2, 0.0, 0.0),
             thickness: 0.01,
             friction: 0.5,
         };
@@ -350,9 +354,10 @@ mod tests {
     fn feature_friction_is_coulomb_against_the_sliding() {
         let (w, k, depth, mu, h) = ([0.2, 0.3, 0.5], 100.0, 0.004, 0.5, 0.01);
         let p = k * depth;
-        // Sliding along x (and closing along the normal, which friction ignores): each
-        // vertex takes its share of mu p against the sliding, and of the push along n.
-        let (force, m) = penalty_with(Vec3::new(0.3, 0.0, -0.1), true);
+        // Sliding over the feature at 0.3 m/s along x (and closing along the normal, which
+        // friction ignores): each vertex takes its share of mu p against the sliding, and
+        // of the push along n.
+        let (force, m) = penalty_with(Vec3::new(0.5, 0.0, -0.1), true);
         let drag = mu * p / 0.3;
         for a in 0..3 {
             let expected = Vec3::new(-mu * p * w[a], 0.0, p * w[a]);
@@ -367,7 +372,7 @@ mod tests {
         }
         // Slower than SLIP_SPEED: held by a drag of mu p / SLIP_SPEED.
         let slow = 0.5 * SLIP_SPEED;
-        let (force, _) = penalty_with(Vec3::new(0.0, slow, 0.0), true);
+        let (force, _) = penalty_with(Vec3::new(0.2, slow, 0.0), true);
         let total: Vec3 = force.iter().sum();
         assert!((total.y + mu * p * 0.5).abs() < 1e-12, "held by {total:?}");
         // No friction without an implicit step.

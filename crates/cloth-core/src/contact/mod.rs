@@ -98,8 +98,9 @@ impl Contacts {
         )
     }
 
-    /// The end-of-step passes: friction and release, the path test of every particle, and
-    /// sharp features against cloth triangles.
+    /// The end-of-step passes: the push-out speed taken back out of the contacts'
+    /// velocities, the path test of every particle, and sharp features through cloth
+    /// triangles.
     #[allow(clippy::too_many_arguments)]
     pub fn finish_step(
         &mut self,

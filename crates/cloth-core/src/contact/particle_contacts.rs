@@ -258,14 +258,18 @@ impl ParticleContacts {
     }
 
     /// Lets go of the contacts whose body had to pull (negative normal reaction): they are
-    /// free for the rest of the step and while they move away. Returns how many.
-    pub fn release_pulling(&mut self) -> usize {
+    /// free while they move away, and with `now` for the rest of the step too (which is
+    /// then solved again). Without it they stay held to the step's end, as its last solve
+    /// had them. Returns how many.
+    pub fn release_pulling(&mut self, now: bool) -> usize {
         let mut released = 0;
         for c in self.active.iter_mut().filter(|c| c.live && c.pulls()) {
             let s = &mut self.state[c.particle()];
             s.released = true;
-            s.mode = ContactMode::Free;
-            c.live = false;
+            if now {
+                s.mode = ContactMode::Free;
+                c.live = false;
+            }
             released += 1;
         }
         released

@@ -25,7 +25,7 @@ impl Simulation {
                 let i = a.particle();
                 ws.v_new[i] = self.v[i] + ws.force[i] * (h / masses[i]);
             }
-            released = c.release_pulling();
+            released = c.release_pulling(true);
             c.explicit_friction(masses, &mut ws.v_new, h);
             c.forget_demand();
         }

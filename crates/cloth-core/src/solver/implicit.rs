@@ -137,17 +137,23 @@ impl Simulation {
                 h,
                 s.pcg.rel_tolerance,
             );
-            if contacts.particles.release_pulling() == 0 || pass == RELEASE_PASSES {
+            let last = pass == RELEASE_PASSES;
+            if contacts.particles.release_pulling(!last) == 0 || last {
                 break;
             }
             self.refill_filter(h)?;
         }
         let ws = &mut self.ws;
         if let Some(contacts) = &mut self.contacts {
-            let (y, z, v) = (&ws.y, &ws.z, &self.v);
-            contacts
-                .particles
-                .record_demand(v, |j| v[j] + y[j] + z[j], self.model.masses(), h);
+            // Friction predicts from this step's forces only if the solve found them.
+            if stats.cg_converged {
+                let (y, z, v) = (&ws.y, &ws.z, &self.v);
+                contacts
+                    .particles
+                    .record_demand(v, |j| v[j] + y[j] + z[j], self.model.masses(), h);
+            } else {
+                contacts.particles.forget_demand();
+            }
         }
         for i in 0..self.x.len() {
             let v: Vec3 = self.v[i] + ws.y[i] + ws.z[i];

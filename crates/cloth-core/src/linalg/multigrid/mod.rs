@@ -34,9 +34,10 @@ const COARSEST_NODES: usize = 64;
 /// Levels at most, the finest included (each at most half the size of the one above).
 const MAX_LEVELS: usize = 32;
 /// Jacobi damping and prolongator smoothing weight, over the spectral radius of `D^-1 A`
-/// (the smoother converges below 2). Above the textbook 4/3 because it converges faster
-/// here: 17 rather than 22 iterations a step for the hanging 110 x 110 sheet, 42 rather
-/// than 51 for the sheet landing on the sphere.
+/// (the smoother converges below 2, so this leaves 10% for the estimate's error). Above
+/// the textbook 4/3 because it converges faster here: a median of 19 rather than 24 CG
+/// iterations a step in `cargo bench --bench step` (the hanging 110 x 110 sheet), 36
+/// rather than 38 in the sphere step of `cargo bench --bench contact`.
 const JACOBI_WEIGHT: f64 = 1.8;
 /// Levels storing fewer blocks run sequentially: their work is smaller than a thread's wake-up.
 const PARALLEL_BLOCKS: usize = 16_384;
@@ -169,7 +170,7 @@ impl Multigrid {
                     &self.fine_basis
                 }
             };
-            inverse_diagonal(m, f, &mut level.inv_diag)
+            inverse_diagonal(m, f, &mut level.inv_diag, parallel)
                 .map_err(|i| format!("multigrid level {l}: diagonal block {i} is not positive definite"))?;
             level.omega = JACOBI_WEIGHT / self.spectrum.radius(m, f, &level.inv_diag, parallel);
             level.tentative.build(basis, &level.aggregates);
@@ -202,15 +203,17 @@ impl Multigrid {
     /// Brings the finest smoother up to date with `a` and `filter`, the rest of the
     /// hierarchy kept from the last build (see [`crate::linalg::Pcg::resolve`]). The
     /// filter may only have freed directions since: the coarse corrections then stay in
-    /// its range.
-    pub fn refresh_finest(&mut self, a: &BlockSparse, filter: &Filter) -> Result<(), String> {
-        let inv_diag = match self.levels.first_mut() {
-            Some(level) => &mut level.inv_diag,
+    /// its range. The smoother's spectral radius is estimated again, as letting go of a
+    /// contact's drag may raise it.
+    pub fn refresh_finest(&mut self, a: &BlockSparse, filter: &Filter, parallel: bool) -> Result<(), String> {
+        let Some(level) = self.levels.first_mut() else {
             // A single level is the dense factor of the filtered matrix itself.
-            None => return self.build(a, filter, false),
+            return self.build(a, filter, parallel);
         };
-        inverse_diagonal(a, Some(filter), inv_diag)
-            .map_err(|i| format!("multigrid level 0: diagonal block {i} is not positive definite"))
+        inverse_diagonal(a, Some(filter), &mut level.inv_diag, parallel)
+            .map_err(|i| format!("multigrid level 0: diagonal block {i} is not positive definite"))?;
+        level.omega = JACOBI_WEIGHT / self.spectrum.radius(a, Some(filter), &level.inv_diag, parallel);
+        Ok(())
     }
 
     /// `x = M b`, one V-cycle; `b` and `x` are in the range of `filter`.
