@@ -101,6 +101,16 @@ impl BlockSparse {
         for_each_row(&self.row_ptr, &mut self.blocks, parallel, f);
     }
 
+    /// Zeroes every block but the diagonal ones, which become `diagonal(r)`; in parallel
+    /// when `parallel`.
+    pub fn reset(&mut self, parallel: bool, diagonal: impl Fn(usize) -> Mat3 + Sync) {
+        let diag = &self.diag;
+        for_each_row(&self.row_ptr, &mut self.blocks, parallel, |r, first, row| {
+            row.fill(Mat3::zeros());
+            row[diag[r] as usize - first] = diagonal(r);
+        });
+    }
+
     /// Makes the matrix exactly symmetric, `(A + A^T) / 2`, after an assembly whose two
     /// triangles were summed in different orders.
     pub fn symmetrize(&mut self) {

@@ -29,12 +29,10 @@ impl Simulation {
         let s = &self.settings;
         let h = s.time_step;
         let target = if with_stiffness {
-            self.matrix.blocks_mut().fill(Mat3::zeros());
-            for (i, &m) in self.model.masses().iter().enumerate() {
-                let d = self.matrix.diag_slot(i);
-                let diagonal = m + h * self.model.drag_coefficient(i);
-                self.matrix.blocks_mut()[d] = Mat3::from_diagonal_element(diagonal);
-            }
+            let model = &self.model;
+            self.matrix.reset(s.parallel, |i| {
+                Mat3::from_diagonal_element(model.masses()[i] + h * model.drag_coefficient(i))
+            });
             let beta = self.model.fabric().damping;
             Some(StiffnessTarget {
                 matrix: &mut self.matrix,
