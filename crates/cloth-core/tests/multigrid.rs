@@ -178,6 +178,48 @@ fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
     );
 }
 
+/// A loose solve taken further by `refine`, with the same preconditioner, ends where one
+/// tight solve does, in about as many iterations all told.
+#[test]
+fn a_refined_solve_reaches_the_tight_answer() {
+    let a = sheet_matrix(30, 5);
+    let n = a.n();
+    let filter = contacts(n, 100);
+    let mut b: Vec<Vec3> = (0..n)
+        .map(|k| Vec3::new(0.2, (k as f64).sin(), -1.0) * 1e-3)
+        .collect();
+    filter.project(&mut b);
+    let settings = |rel_tolerance| PcgSettings {
+        rel_tolerance,
+        ..Default::default()
+    };
+    let mut pcg = Pcg::new(n);
+    let mut x = vec![Vec3::zeros(); n];
+    let loose = pcg
+        .solve(&a, &filter, &b, &mut x, &settings(1e-2), 0.0, false)
+        .expect("solve");
+    let refined = pcg
+        .refine(&a, &filter, &b, &mut x, &settings(1e-10), 0.0, false)
+        .expect("solve");
+    let mut expected = vec![Vec3::zeros(); n];
+    let direct = Pcg::new(n)
+        .solve(&a, &filter, &b, &mut expected, &settings(1e-10), 0.0, false)
+        .expect("solve");
+    assert!(refined.converged && direct.converged);
+    let error = x
+        .iter()
+        .zip(&expected)
+        .map(|(x, e)| (x - e).norm())
+        .fold(0.0, f64::max);
+    let scale = expected.iter().map(|e| e.norm()).fold(0.0, f64::max);
+    assert!(error < 1e-7 * scale, "refined: off by {error:e} of {scale:e}");
+    let (both, once) = (loose.iterations + refined.iterations, direct.iterations);
+    assert!(
+        both <= once + 5,
+        "loose then refined: {both} iterations, at once: {once}"
+    );
+}
+
 #[test]
 fn multigrid_is_exact_on_a_system_it_factors_whole() {
     // 36 particles: below the coarsest level's size, so the cycle is a direct solve.

@@ -192,6 +192,14 @@ fn run_cg(
     )
 }
 
+/// How much of the last solve's multigrid hierarchy a solve keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Setup {
+    Build,
+    RefreshFinest,
+    Keep,
+}
+
 /// Reusable PCG workspace for systems of `n` blocks.
 pub struct Pcg {
     inv_diag: Vec<Mat3>,
@@ -248,7 +256,7 @@ impl Pcg {
         abs_tolerance: f64,
         parallel: bool,
     ) -> Result<PcgOutcome, String> {
-        self.run(a, filter, b, x, settings, abs_tolerance, parallel, true)
+        self.run(a, filter, b, x, settings, abs_tolerance, parallel, Setup::Build)
     }
 
     /// As [`Pcg::solve`], after a solve of a system that differs from this one only in a
@@ -256,7 +264,8 @@ impl Pcg {
     /// let go within a step). The multigrid hierarchy of that solve is kept, only its
     /// finest smoother brought up to date: its coarse spaces miss the freed directions
     /// and its coarse matrices the changed rows, which the smoother makes good, at a few
-    /// iterations rather than a whole setup. The cycle stays symmetric and definite.
+    /// iterations rather than a whole setup. The cycle stays symmetric, and definite as
+    /// the finest smoother's spectral radius is estimated again.
     #[allow(clippy::too_many_arguments)]
     pub fn resolve(
         &mut self,
@@ -268,7 +277,32 @@ impl Pcg {
         abs_tolerance: f64,
         parallel: bool,
     ) -> Result<PcgOutcome, String> {
-        self.run(a, filter, b, x, settings, abs_tolerance, parallel, false)
+        self.run(
+            a,
+            filter,
+            b,
+            x,
+            settings,
+            abs_tolerance,
+            parallel,
+            Setup::RefreshFinest,
+        )
+    }
+
+    /// As [`Pcg::solve`], for the matrix and filter of the last solve (solved further,
+    /// say to a tighter tolerance): its preconditioner serves as it is.
+    #[allow(clippy::too_many_arguments)]
+    pub fn refine(
+        &mut self,
+        a: &BlockSparse,
+        filter: &Filter,
+        b: &[Vec3],
+        x: &mut [Vec3],
+        settings: &PcgSettings,
+        abs_tolerance: f64,
+        parallel: bool,
+    ) -> Result<PcgOutcome, String> {
+        self.run(a, filter, b, x, settings, abs_tolerance, parallel, Setup::Keep)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -281,7 +315,7 @@ impl Pcg {
         settings: &PcgSettings,
         abs_tolerance: f64,
         parallel: bool,
-        rebuild: bool,
+        setup: Setup,
     ) -> Result<PcgOutcome, String> {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
         blocks_mut(self.rhs.as_mut()).copy_from_slice(b);
@@ -297,10 +331,11 @@ impl Pcg {
         let operator = filtered_product(a, filter, parallel);
         let mut result = None;
         if settings.preconditioner == Preconditioner::Multigrid {
-            match &mut self.multigrid {
-                Some(m) if m.fits(a) && !rebuild => m.refresh_finest(a, filter, parallel)?,
-                Some(m) if m.fits(a) => m.build(a, filter, parallel)?,
-                slot => slot.insert(Multigrid::new(a)).build(a, filter, parallel)?,
+            match (&mut self.multigrid, setup) {
+                (Some(m), Setup::Keep) if m.fits(a) => {}
+                (Some(m), Setup::RefreshFinest) if m.fits(a) => m.refresh_finest(a, filter, parallel)?,
+                (Some(m), _) if m.fits(a) => m.build(a, filter, parallel)?,
+                (slot, _) => slot.insert(Multigrid::new(a)).build(a, filter, parallel)?,
             }
             let multigrid = self.multigrid.as_ref().expect("made above");
             let cycle = BlockMap {

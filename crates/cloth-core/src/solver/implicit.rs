@@ -4,7 +4,7 @@
 
 use super::assembly::StiffnessTarget;
 use super::{Simulation, StepStats};
-use crate::linalg::{BlockSparse, Pcg};
+use crate::linalg::{BlockSparse, Filter, Pcg, PcgOutcome, PcgSettings};
 use crate::{Mat3, Vec3};
 use std::time::Instant;
 
@@ -66,7 +66,11 @@ impl Simulation {
 
     /// Writes the next state into the workspace. Contacts whose body would have to pull
     /// are let go and the step solved again, up to [`RELEASE_PASSES`] times: a contact
-    /// never holds the cloth to the body.
+    /// never holds the cloth to the body (but for those found pulling in the last solve,
+    /// let go from the next step). With contacts, the first solve is a scout, to
+    /// [`SCOUT_TOLERANCE`] times the tolerance: it finds most of the contacts to let go,
+    /// so the solves to the full tolerance start with the right contacts more often (a
+    /// median of 27 rather than 36 CG iterations a step for the sheet on the sphere).
     pub(super) fn implicit_step(&mut self, h: f64, velocity_accuracy: f64) -> Result<StepStats, String> {
         let start = Instant::now();
         let potential = self.assemble_system();
@@ -91,7 +95,12 @@ impl Simulation {
                 .particles
                 .set_friction(h, &self.v, masses, &self.ws.force);
         }
-        for pass in 0..=RELEASE_PASSES {
+        let mut scouting = self.contacts.is_some();
+        // Solves so far, the scout's included (so a step makes no more solves than without
+        // it), and what the next one keeps of the last one's preconditioner.
+        let mut pass = 0;
+        let mut solve: Solve = Pcg::solve;
+        loop {
             if let Some(contacts) = &mut self.contacts {
                 // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
                 contacts
@@ -109,15 +118,17 @@ impl Simulation {
                 ws.filter.project(&mut ws.rhs);
             }
             ws.filter.project(&mut ws.y);
-            // A re-solve only lets contacts go: the first solve's preconditioner serves.
-            let solve = if pass == 0 { Pcg::solve } else { Pcg::resolve };
+            let mut settings = s.pcg;
+            if scouting {
+                settings.rel_tolerance = (SCOUT_TOLERANCE * settings.rel_tolerance).min(0.5);
+            }
             let outcome = solve(
                 &mut ws.pcg,
                 &self.matrix,
                 &ws.filter,
                 &ws.rhs,
                 &mut ws.y,
-                &s.pcg,
+                &settings,
                 abs_tolerance,
                 s.parallel,
             )?;
@@ -133,13 +144,28 @@ impl Simulation {
                 &ws.b,
                 |j| ws.y[j] + ws.z[j],
                 h,
-                s.pcg.rel_tolerance,
+                settings.rel_tolerance,
             );
+            if scouting {
+                scouting = false;
+                // Going on to the full tolerance: the same system, unless contacts were let
+                // go (a re-solve only frees directions: the preconditioner mostly serves).
+                solve = if contacts.particles.release_pulling(true) == 0 {
+                    Pcg::refine
+                } else {
+                    self.refill_filter(h)?;
+                    Pcg::resolve
+                };
+                pass += 1;
+                continue;
+            }
             let last = pass == RELEASE_PASSES;
             if contacts.particles.release_pulling(!last) == 0 || last {
                 break;
             }
             self.refill_filter(h)?;
+            solve = Pcg::resolve;
+            pass += 1;
         }
         let ws = &mut self.ws;
         if let Some(contacts) = &mut self.contacts {
@@ -163,5 +189,20 @@ impl Simulation {
     }
 }
 
-/// Re-solves a step may take after letting go of pulling contacts.
+/// [`Pcg::solve`], [`Pcg::resolve`] or [`Pcg::refine`].
+type Solve = fn(
+    &mut Pcg,
+    &BlockSparse,
+    &Filter,
+    &[Vec3],
+    &mut [Vec3],
+    &PcgSettings,
+    f64,
+    bool,
+) -> Result<PcgOutcome, String>;
+
+/// Solves a step may make after its first, letting go of pulling contacts.
 pub const RELEASE_PASSES: usize = 2;
+
+/// The scouting solve's tolerance over the step's.
+pub const SCOUT_TOLERANCE: f64 = 10.0;
