@@ -159,7 +159,7 @@ impl Simulation {
                 pass += 1;
                 continue;
             }
-            let last = pass == RELEASE_PASSES;
+            let last = pass >= RELEASE_PASSES;
             if contacts.particles.release_pulling(!last) == 0 || last {
                 break;
             }
