@@ -346,6 +346,69 @@ fn friction_stops_a_sliding_sheet_as_coulomb_says() {
     assert!(fastest < 1e-3, "still moving at {fastest} m/s");
 }
 
+/// A sheet dragged over a level plate by one edge at constant speed: once it slides
+/// steadily, its pull on the pinned edge balances Coulomb's friction on the rest, mu g
+/// times their mass. Here each contact's friction comes through its neighbours' pull, not
+/// from a uniform motion.
+#[test]
+fn a_dragged_sheet_pulls_back_with_coulombs_friction() {
+    use cloth::collide::{Body, TriSurface};
+    use cloth::scenes::scene_fabric;
+    use cloth::{GridBuilder, Pin, SimulationBuilder};
+    let (mu, g, thickness, speed, h) = (0.5, 9.81, 0.003, 0.1, 1.0 / 120.0);
+    let plate = TriSurface::cuboid(Vec3::new(2.0, 2.0, 0.05)).unwrap();
+    let pose = nalgebra::Isometry3::translation(0.0, 0.0, -0.05);
+    let body = Body::new("plate", plate)
+        .with_pose(pose)
+        .unwrap()
+        .with_thickness(thickness)
+        .unwrap()
+        .with_friction(mu)
+        .unwrap();
+    let n = 11;
+    let mesh = GridBuilder::new(n, n)
+        .size(0.2, 0.2)
+        .origin(Vec3::new(-0.1, -0.1, thickness))
+        .build()
+        .unwrap();
+    let x0 = mesh.positions().to_vec();
+    // The edge at the lowest y, pulled along -y.
+    let edge: Vec<usize> = (0..n).collect();
+    let pins = edge.iter().map(|&i| {
+        let start = x0[i];
+        Pin::path(i, move |t| start - t * speed * Vec3::y())
+    });
+    let builder = SimulationBuilder::new(mesh, scene_fabric().with_drag(0.0))
+        .time_step(h)
+        .pins(pins);
+    let mut scene = Scene::new(body, builder).unwrap();
+    let sim = &mut scene.simulation;
+    let dragged: f64 = sim.masses()[n..].iter().sum();
+    let mut pulls = Vec::new();
+    for step in 0..240 {
+        sim.step().unwrap();
+        if step >= 180 {
+            let forces = sim.forces();
+            pulls.push(edge.iter().map(|&i| forces[i].y).sum::<f64>());
+        }
+    }
+    let pull = pulls.iter().sum::<f64>() / pulls.len() as f64;
+    let expected = mu * g * dragged;
+    eprintln!("dragged sheet: pull {pull:.5} N, Coulomb's friction {expected:.5} N");
+    let slowest = sim.velocities()[n..]
+        .iter()
+        .map(|v| -v.y)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (slowest - speed).abs() < 0.02 * speed,
+        "the sheet should slide with its edge: slowest particle at {slowest} m/s"
+    );
+    assert!(
+        (pull - expected).abs() < 0.03 * expected,
+        "pull on the edge {pull:.5} N, Coulomb's friction {expected:.5} N"
+    );
+}
+
 #[test]
 fn a_fast_sheet_does_not_pass_through_a_thin_plate() {
     let setup = FallingPlate::default();
