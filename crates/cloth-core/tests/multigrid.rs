@@ -4,7 +4,7 @@
 //! Jacobi's.
 
 use cloth_core::linalg::{
-    BlockSparse, Constraint, ConstraintKind, Filter, Multigrid, Pcg, PcgSettings, Preconditioner,
+    BlockSparse, Constraint, ConstraintKind, Filter, Multigrid, Pcg, PcgSettings, Preconditioner, Setup,
 };
 use cloth_core::{Fabric, GridBuilder, Pin, SimulationBuilder, Vec3};
 use nalgebra::DMatrix;
@@ -97,6 +97,18 @@ fn contacts(n: usize, keep: usize) -> Filter {
     filter
 }
 
+/// `x` agrees with `expected` to `tolerance` of the largest of `expected`, particle by
+/// particle.
+fn assert_close(x: &[Vec3], expected: &[Vec3], tolerance: f64, what: &str) {
+    let error = x
+        .iter()
+        .zip(expected)
+        .map(|(x, e)| (x - e).norm())
+        .fold(0.0, f64::max);
+    let scale = expected.iter().map(|e| e.norm()).fold(0.0, f64::max);
+    assert!(error < tolerance * scale, "{what}: off by {error:e} of {scale:e}");
+}
+
 /// `S M S + I - S` is symmetric with a positive smallest eigenvalue.
 fn assert_symmetric_definite(m: &Multigrid, a: &BlockSparse, filter: &Filter) {
     let mut dense = dense_preconditioner(m, a, filter);
@@ -141,44 +153,36 @@ fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
         rel_tolerance: 1e-10,
         ..Default::default()
     };
-    let solve = |pcg: &mut Pcg, a: &BlockSparse, filter: &Filter, x: &mut Vec<Vec3>, fresh: bool| {
+    let solve = |pcg: &mut Pcg, a: &BlockSparse, filter: &Filter, x: &mut Vec<Vec3>, setup| {
         let mut rhs = b.clone();
         filter.project(&mut rhs);
         filter.project(x);
-        let run = if fresh { Pcg::solve } else { Pcg::resolve };
-        let out = run(pcg, a, filter, &rhs, x, &settings, 0.0, false).expect("solve");
+        let out = pcg
+            .solve_with(a, filter, &rhs, x, &settings, 0.0, false, setup)
+            .expect("solve");
         assert!(out.converged, "{out:?}");
         out.iterations
     };
     let mut pcg = Pcg::new(n);
     let mut x = vec![Vec3::zeros(); n];
-    solve(&mut pcg, &with_drag, &held, &mut x, true);
+    solve(&mut pcg, &with_drag, &held, &mut x, Setup::Build);
     // The same re-solve, from the same start, with the hierarchy built afresh.
     let mut rebuilt_x = x.clone();
-    let rebuilt = solve(&mut Pcg::new(n), &without, &let_go, &mut rebuilt_x, true);
-    let kept = solve(&mut pcg, &without, &let_go, &mut x, false);
+    let rebuilt = solve(&mut Pcg::new(n), &without, &let_go, &mut rebuilt_x, Setup::Build);
+    let kept = solve(&mut pcg, &without, &let_go, &mut x, Setup::RefreshFinest);
     assert!(
         2 * kept <= 3 * rebuilt,
         "the kept hierarchy took {kept} iterations, a rebuilt one {rebuilt}"
     );
     let mut expected = vec![Vec3::zeros(); n];
-    let fresh = solve(&mut Pcg::new(n), &without, &let_go, &mut expected, true);
-    let error = x
-        .iter()
-        .zip(&expected)
-        .map(|(x, e)| (x - e).norm())
-        .fold(0.0, f64::max);
-    let scale = expected.iter().map(|e| e.norm()).fold(0.0, f64::max);
-    assert!(
-        error < 1e-6 * scale,
-        "kept hierarchy: off by {error:e} of {scale:e}"
-    );
+    let fresh = solve(&mut Pcg::new(n), &without, &let_go, &mut expected, Setup::Build);
+    assert_close(&x, &expected, 1e-6, "kept hierarchy");
     eprintln!(
         "re-solve with the kept hierarchy: {kept} iterations, rebuilt: {rebuilt}, afresh from zero: {fresh}"
     );
 }
 
-/// A loose solve taken further by `refine`, with the same preconditioner, ends where one
+/// A loose solve taken further with the same preconditioner (`Setup::Keep`) ends where one
 /// tight solve does, in about as many iterations all told.
 #[test]
 fn a_refined_solve_reaches_the_tight_answer() {
@@ -199,20 +203,14 @@ fn a_refined_solve_reaches_the_tight_answer() {
         .solve(&a, &filter, &b, &mut x, &settings(1e-2), 0.0, false)
         .expect("solve");
     let refined = pcg
-        .refine(&a, &filter, &b, &mut x, &settings(1e-10), 0.0, false)
+        .solve_with(&a, &filter, &b, &mut x, &settings(1e-10), 0.0, false, Setup::Keep)
         .expect("solve");
     let mut expected = vec![Vec3::zeros(); n];
     let direct = Pcg::new(n)
         .solve(&a, &filter, &b, &mut expected, &settings(1e-10), 0.0, false)
         .expect("solve");
     assert!(refined.converged && direct.converged);
-    let error = x
-        .iter()
-        .zip(&expected)
-        .map(|(x, e)| (x - e).norm())
-        .fold(0.0, f64::max);
-    let scale = expected.iter().map(|e| e.norm()).fold(0.0, f64::max);
-    assert!(error < 1e-7 * scale, "refined: off by {error:e} of {scale:e}");
+    assert_close(&x, &expected, 1e-7, "refined");
     let (both, once) = (loose.iterations + refined.iterations, direct.iterations);
     assert!(
         both <= once + 5,

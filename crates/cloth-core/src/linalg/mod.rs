@@ -12,4 +12,4 @@ pub use block_sparse::BlockSparse;
 pub use filter::{Constraint, ConstraintKind, Filter};
 pub use multigrid::Multigrid;
 pub(crate) use pcg::inverse_diagonal;
-pub use pcg::{Pcg, PcgOutcome, PcgSettings, Preconditioner};
+pub use pcg::{Pcg, PcgOutcome, PcgSettings, Preconditioner, Setup};

@@ -192,11 +192,21 @@ fn run_cg(
     )
 }
 
-/// How much of the last solve's multigrid hierarchy a solve keeps.
+/// How much of the last solve's preconditioner a solve keeps (see [`Pcg::solve_with`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Setup {
+pub enum Setup {
+    /// Nothing: the multigrid hierarchy is built for this matrix and filter.
     Build,
+    /// After a solve of a system that differs from this one only in a few particles'
+    /// rows, and whose filter constrained those particles more (a contact let go within a
+    /// step): its hierarchy is kept, only the finest smoother brought up to date (its
+    /// inverse diagonal, and its spectral radius estimated again, so the cycle stays
+    /// symmetric and definite). The coarse spaces miss the freed directions and the
+    /// coarse matrices the changed rows, which the smoother makes good, at a few
+    /// iterations rather than a whole setup.
     RefreshFinest,
+    /// Everything, for the matrix and filter of the last solve solved further (say to a
+    /// tighter tolerance).
     Keep,
 }
 
@@ -256,57 +266,13 @@ impl Pcg {
         abs_tolerance: f64,
         parallel: bool,
     ) -> Result<PcgOutcome, String> {
-        self.run(a, filter, b, x, settings, abs_tolerance, parallel, Setup::Build)
+        self.solve_with(a, filter, b, x, settings, abs_tolerance, parallel, Setup::Build)
     }
 
-    /// As [`Pcg::solve`], after a solve of a system that differs from this one only in a
-    /// few particles' rows, and whose filter constrained those particles more (a contact
-    /// let go within a step). The multigrid hierarchy of that solve is kept, only its
-    /// finest smoother brought up to date: its coarse spaces miss the freed directions
-    /// and its coarse matrices the changed rows, which the smoother makes good, at a few
-    /// iterations rather than a whole setup. The cycle stays symmetric, and definite as
-    /// the finest smoother's spectral radius is estimated again.
+    /// As [`Pcg::solve`], keeping as much of the last solve's preconditioner as `setup`
+    /// says.
     #[allow(clippy::too_many_arguments)]
-    pub fn resolve(
-        &mut self,
-        a: &BlockSparse,
-        filter: &Filter,
-        b: &[Vec3],
-        x: &mut [Vec3],
-        settings: &PcgSettings,
-        abs_tolerance: f64,
-        parallel: bool,
-    ) -> Result<PcgOutcome, String> {
-        self.run(
-            a,
-            filter,
-            b,
-            x,
-            settings,
-            abs_tolerance,
-            parallel,
-            Setup::RefreshFinest,
-        )
-    }
-
-    /// As [`Pcg::solve`], for the matrix and filter of the last solve (solved further,
-    /// say to a tighter tolerance): its preconditioner serves as it is.
-    #[allow(clippy::too_many_arguments)]
-    pub fn refine(
-        &mut self,
-        a: &BlockSparse,
-        filter: &Filter,
-        b: &[Vec3],
-        x: &mut [Vec3],
-        settings: &PcgSettings,
-        abs_tolerance: f64,
-        parallel: bool,
-    ) -> Result<PcgOutcome, String> {
-        self.run(a, filter, b, x, settings, abs_tolerance, parallel, Setup::Keep)
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn run(
+    pub fn solve_with(
         &mut self,
         a: &BlockSparse,
         filter: &Filter,

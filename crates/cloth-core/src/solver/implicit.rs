@@ -4,7 +4,7 @@
 
 use super::assembly::StiffnessTarget;
 use super::{Simulation, StepStats};
-use crate::linalg::{BlockSparse, Filter, Pcg, PcgOutcome, PcgSettings};
+use crate::linalg::{BlockSparse, Setup};
 use crate::{Mat3, Vec3};
 use std::time::Instant;
 
@@ -99,31 +99,35 @@ impl Simulation {
         // Solves so far, the scout's included (so a step makes no more solves than without
         // it), and what the next one keeps of the last one's preconditioner.
         let mut pass = 0;
-        let mut solve: Solve = Pcg::solve;
+        let mut setup = Setup::Build;
         loop {
-            if let Some(contacts) = &mut self.contacts {
-                // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
-                contacts
-                    .particles
-                    .apply_friction(&self.v, &mut self.ws.b, &mut self.matrix, h);
+            // Going on with the same system (after a scout that let nothing go), the
+            // friction, the prescribed velocities and the right-hand side stand.
+            if setup != Setup::Keep {
+                if let Some(contacts) = &mut self.contacts {
+                    // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
+                    contacts
+                        .particles
+                        .apply_friction(&self.v, &mut self.ws.b, &mut self.matrix, h);
+                }
+                let (s, ws) = (&self.settings, &mut self.ws);
+                ws.filter.velocity_change(&self.v, &mut ws.z);
+                ws.rhs.copy_from_slice(&ws.b);
+                if !ws.filter.is_empty() {
+                    self.matrix.mul(&ws.z, &mut ws.az, s.parallel);
+                    for (r, az) in ws.rhs.iter_mut().zip(&ws.az) {
+                        *r -= az;
+                    }
+                    ws.filter.project(&mut ws.rhs);
+                }
+                ws.filter.project(&mut ws.y);
             }
             let (s, ws) = (&self.settings, &mut self.ws);
-            ws.filter.velocity_change(&self.v, &mut ws.z);
-            ws.rhs.copy_from_slice(&ws.b);
-            if !ws.filter.is_empty() {
-                self.matrix.mul(&ws.z, &mut ws.az, s.parallel);
-                for (r, az) in ws.rhs.iter_mut().zip(&ws.az) {
-                    *r -= az;
-                }
-                ws.filter.project(&mut ws.rhs);
-            }
-            ws.filter.project(&mut ws.y);
             let mut settings = s.pcg;
             if scouting {
                 settings.rel_tolerance = (SCOUT_TOLERANCE * settings.rel_tolerance).min(0.5);
             }
-            let outcome = solve(
-                &mut ws.pcg,
+            let outcome = ws.pcg.solve_with(
                 &self.matrix,
                 &ws.filter,
                 &ws.rhs,
@@ -131,6 +135,7 @@ impl Simulation {
                 &settings,
                 abs_tolerance,
                 s.parallel,
+                setup,
             )?;
             ws.filter.project(&mut ws.y);
             stats.cg_iterations += outcome.iterations;
@@ -146,25 +151,21 @@ impl Simulation {
                 h,
                 settings.rel_tolerance,
             );
-            if scouting {
-                scouting = false;
-                // Going on to the full tolerance: the same system, unless contacts were let
-                // go (a re-solve only frees directions: the preconditioner mostly serves).
-                solve = if contacts.particles.release_pulling(true) == 0 {
-                    Pcg::refine
-                } else {
-                    self.refill_filter(h)?;
-                    Pcg::resolve
-                };
-                pass += 1;
-                continue;
-            }
-            let last = pass >= RELEASE_PASSES;
-            if contacts.particles.release_pulling(!last) == 0 || last {
+            // After the scout the step goes on to the full tolerance in any case: with the
+            // same system if it let nothing go, else with the freed contacts (a re-solve
+            // only frees directions: the preconditioner mostly serves).
+            let last = !scouting && pass >= RELEASE_PASSES;
+            let released = contacts.particles.release_pulling(!last);
+            if last || (released == 0 && !scouting) {
                 break;
             }
-            self.refill_filter(h)?;
-            solve = Pcg::resolve;
+            setup = if released == 0 {
+                Setup::Keep
+            } else {
+                self.refill_filter(h)?;
+                Setup::RefreshFinest
+            };
+            scouting = false;
             pass += 1;
         }
         let ws = &mut self.ws;
@@ -188,18 +189,6 @@ impl Simulation {
         Ok(stats)
     }
 }
-
-/// [`Pcg::solve`], [`Pcg::resolve`] or [`Pcg::refine`].
-type Solve = fn(
-    &mut Pcg,
-    &BlockSparse,
-    &Filter,
-    &[Vec3],
-    &mut [Vec3],
-    &PcgSettings,
-    f64,
-    bool,
-) -> Result<PcgOutcome, String>;
 
 /// Solves a step may make after its first, letting go of pulling contacts.
 pub const RELEASE_PASSES: usize = 2;

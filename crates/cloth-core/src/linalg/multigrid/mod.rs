@@ -201,7 +201,7 @@ impl Multigrid {
     }
 
     /// Brings the finest smoother up to date with `a` and `filter`, the rest of the
-    /// hierarchy kept from the last build (see [`crate::linalg::Pcg::resolve`]). The
+    /// hierarchy kept from the last build (see [`crate::linalg::Setup::RefreshFinest`]). The
     /// filter may only have freed directions since: the coarse corrections then stay in
     /// its range. The smoother's spectral radius is estimated again, as letting go of a
     /// contact's drag may raise it.
