@@ -4,4 +4,7 @@
 pub use cloth_collide as collide;
 pub use cloth_core::*;
 
+pub mod meshing;
+pub mod presets;
 pub mod scenes;
+pub mod validation;

@@ -12,8 +12,6 @@ use std::collections::HashSet;
 
 /// Default contact thickness, m: a few millimetres, about a fabric's thickness.
 pub const DEFAULT_THICKNESS: f64 = 0.003;
-/// Default Coulomb coefficient of cloth on a body.
-pub const DEFAULT_FRICTION: f64 = 0.5;
 /// Default fold angle above which an edge counts as sharp, rad (30 degrees).
 pub const DEFAULT_SHARP_ANGLE: f64 = std::f64::consts::PI / 6.0;
 
@@ -42,7 +40,8 @@ pub struct Body {
     shading: Shading,
     motion: Motion,
     thickness: f64,
-    friction: f64,
+    /// `None`: the fabric's own coefficient applies.
+    friction: Option<f64>,
     /// Largest distance of a surface vertex from the local origin.
     radius: f64,
 }
@@ -79,7 +78,7 @@ impl Body {
             shading,
             motion: Motion::default(),
             thickness: DEFAULT_THICKNESS,
-            friction: DEFAULT_FRICTION,
+            friction: None,
             radius,
         }
     }
@@ -151,7 +150,8 @@ impl Body {
         self.thickness = thickness;
         Ok(self)
     }
-    /// Coulomb friction coefficient; `f64::INFINITY` is the source's no-slip condition.
+    /// Coulomb friction coefficient of cloth on this body, in place of the fabric's own;
+    /// `f64::INFINITY` is the source's no-slip condition.
     pub fn with_friction(mut self, friction: f64) -> Result<Self, BodyError> {
         self.check(
             friction >= 0.0,
@@ -159,7 +159,7 @@ impl Body {
             friction,
             "a non-negative coefficient (infinity for no slip)",
         )?;
-        self.friction = friction;
+        self.friction = Some(friction);
         Ok(self)
     }
     /// Fold angle (rad) above which an edge counts as sharp and is kept out of cloth
@@ -184,7 +184,8 @@ impl Body {
     pub fn thickness(&self) -> f64 {
         self.thickness
     }
-    pub fn friction(&self) -> f64 {
+    /// The body's own coefficient, if it sets one (otherwise the fabric's applies).
+    pub fn friction(&self) -> Option<f64> {
         self.friction
     }
     /// The sharp edges and corners, in the body's own frame.

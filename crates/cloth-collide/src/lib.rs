@@ -13,6 +13,6 @@ mod motion;
 pub mod surface;
 
 pub use bodies::Bodies;
-pub use body::{Body, BodyError, DEFAULT_FRICTION, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS};
+pub use body::{Body, BodyError, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS};
 pub use motion::Motion;
 pub use surface::{SurfaceError, SurfaceOptions, TriSurface};

@@ -30,10 +30,11 @@ fn friction_must_be_non_negative_and_may_be_infinite() {
     for bad in [-0.1, f64::NAN, f64::NEG_INFINITY] {
         assert_names(ball().with_friction(bad).unwrap_err(), "friction");
     }
-    assert_eq!(ball().with_friction(0.0).unwrap().friction(), 0.0);
+    assert_eq!(ball().friction(), None, "the fabric's coefficient unless set");
+    assert_eq!(ball().with_friction(0.0).unwrap().friction(), Some(0.0));
     assert_eq!(
         ball().with_friction(f64::INFINITY).unwrap().friction(),
-        f64::INFINITY
+        Some(f64::INFINITY)
     );
 }
 

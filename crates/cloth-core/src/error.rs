@@ -42,6 +42,12 @@ pub enum ParamError {
         value: f64,
         expected: &'static str,
     },
+    #[error("parameter `{name}` = {value} is inconsistent: {reason}")]
+    Inconsistent {
+        name: &'static str,
+        value: f64,
+        reason: String,
+    },
     #[error("tensile curve `{name}` is invalid: {reason}")]
     BadCurve { name: &'static str, reason: String },
     #[error("pin on particle {particle}, but the mesh has {count} particles")]

@@ -21,7 +21,10 @@ pub mod solver;
 
 pub use contact::{Collider, ContactMode, Proximity, SharpFeature, SurfacePoint};
 pub use error::{DivergenceReason, MeshError, ParamError, SimError};
-pub use fabric::{BendingLaw, BendingRigidity, Fabric, TensileLaw};
+pub use fabric::{
+    BendingLaw, BendingRigidity, Fabric, KesConversion, KesDirection, KesMeasurement, SourceCoefficients,
+    TensileLaw, UnusedKes,
+};
 pub use mesh::{ClothMesh, GridBuilder, GridDiagonals};
 pub use metrics::{GridStretch, StrainReport};
 pub use solver::{

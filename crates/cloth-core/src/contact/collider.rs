@@ -19,8 +19,9 @@ pub struct SurfacePoint {
     pub velocity: Vec3,
     /// The body's contact thickness, m: particles are kept this far out.
     pub thickness: f64,
-    /// Coulomb coefficient between the cloth and this body (`f64::INFINITY`: no slip).
-    pub friction: f64,
+    /// Coulomb coefficient between the cloth and this body (`f64::INFINITY`: no slip);
+    /// `None` when the body leaves it to the fabric's own coefficient.
+    pub friction: Option<f64>,
     /// The particle's path entered the body during the motion; `point` is the entry.
     pub crossed: bool,
 }
@@ -62,8 +63,8 @@ pub struct SharpFeature {
     /// Velocity of the feature (at its midpoint), m/s.
     pub velocity: Vec3,
     pub thickness: f64,
-    /// The body's Coulomb coefficient (infinite: no slip).
-    pub friction: f64,
+    /// The body's Coulomb coefficient (infinite: no slip); `None`: the fabric's.
+    pub friction: Option<f64>,
 }
 
 /// Rigid bodies as the solver needs them. Implementations answer queries only; the solver

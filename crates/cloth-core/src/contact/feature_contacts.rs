@@ -60,6 +60,7 @@ pub(crate) fn detect_features(
     x: &[Vec3],
     gap_bound: impl Fn(usize) -> f64,
     max_thickness: f64,
+    cloth_friction: f64,
     out: &mut Vec<FeatureContact>,
 ) {
     out.clear();
@@ -87,7 +88,7 @@ pub(crate) fn detect_features(
                         point: hit.point,
                         velocity: f.velocity,
                         thickness: f.thickness,
-                        friction: f.friction,
+                        friction: f.friction.unwrap_or(cloth_friction),
                     });
                 }
             }
@@ -320,7 +321,7 @@ mod tests {
             normal: Vec3::z(),
             velocity: Vec3::zeros(),
             thickness: 0.01,
-            friction: 0.5,
+            friction: Some(0.5),
         }
     }
     const TRI: [Vec3; 3] = [

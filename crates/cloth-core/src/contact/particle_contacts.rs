@@ -115,10 +115,12 @@ pub(crate) struct ParticleContacts {
     pub active: Vec<ActiveContact>,
     /// How far beyond the thickness a query looks, m.
     reach: f64,
+    /// The fabric's Coulomb coefficient, for bodies that do not set their own.
+    cloth_friction: f64,
 }
 
 impl ParticleContacts {
-    pub fn new(n: usize, reach: f64) -> Self {
+    pub fn new(n: usize, reach: f64, cloth_friction: f64) -> Self {
         Self {
             state: vec![
                 ParticleState {
@@ -134,6 +136,7 @@ impl ParticleContacts {
             ],
             active: Vec::with_capacity(n),
             reach,
+            cloth_friction,
         }
     }
 
@@ -187,7 +190,8 @@ impl ParticleContacts {
             } else {
                 relative.dot(&n).max(-p.gap() / h).min(0.0)
             };
-            let (kind, velocity) = if p.friction == f64::INFINITY {
+            let friction = p.friction.unwrap_or(self.cloth_friction);
+            let (kind, velocity) = if friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
                 (ConstraintKind::Fixed, p.velocity + correction * n)
             } else {
@@ -207,7 +211,7 @@ impl ParticleContacts {
                 normal: n,
                 body_velocity: p.velocity,
                 correction,
-                friction: p.friction,
+                friction,
                 drag: 0.0,
                 applied_drag: 0.0,
                 live: true,

@@ -148,6 +148,25 @@ pub fn add_bending(law: BendingLaw, k: f64, x: &[Vec3; 4], mode: HessianMode, ou
     }
 }
 
+/// The factor on a hinge's stiffness where one wing is clamped: a triangle whose three
+/// vertices are pinned is held rigid, so the hinge's bend lies wholly in the free wing
+/// and its stiffness is `B |e|^2 / A_free` rather than `B |e|^2 / (A1 + A2)`. Without
+/// it a clamp sits half a cell inside the clamped region, an error of first order in the
+/// cell size (twice the cell over the overhang, relative, on a cantilever's tip drop).
+/// `ids` are the hinge's (edge, edge, opposite, opposite) vertices.
+pub fn clamp_factor(uv: &[nalgebra::Vector2<f64>], ids: [usize; 4], pinned: &[bool]) -> f64 {
+    let wing_pinned = |o: usize| pinned[ids[0]] && pinned[ids[1]] && pinned[ids[o]];
+    let area = |o: usize| {
+        let (e, f) = (uv[ids[1]] - uv[ids[0]], uv[ids[o]] - uv[ids[0]]);
+        0.5 * (e.x * f.y - e.y * f.x).abs()
+    };
+    match (wing_pinned(2), wing_pinned(3)) {
+        (true, false) => (area(2) + area(3)) / area(3),
+        (false, true) => (area(2) + area(3)) / area(2),
+        _ => 1.0,
+    }
+}
+
 /// Rest geometry of a hinge in material space: `|e|^2 / (A1 + A2)` and the fold direction.
 fn hinge_rest(mesh: &ClothMesh, edge: [usize; 2], opposite: [usize; 2]) -> (f64, f64, f64) {
     let uv = mesh.uv();

@@ -1,9 +1,14 @@
-//! Fabric parameters in SI units, as the energies consume them.
+//! Fabric parameters in SI units, as the energies consume them, and the conversions from
+//! Kawabata (KES-F) records and the source paper's coefficients.
 
 mod bending_params;
+pub mod kes;
 mod parameters;
+mod source_coefficients;
 mod tensile_law;
 
 pub use bending_params::{BendingLaw, BendingRigidity};
-pub use parameters::Fabric;
+pub use kes::{KesConversion, KesDirection, KesMeasurement, UnusedKes};
+pub use parameters::{Fabric, DEFAULT_FRICTION, DEFAULT_THICKNESS};
+pub use source_coefficients::SourceCoefficients;
 pub use tensile_law::{TensileLaw, TensileResponse};

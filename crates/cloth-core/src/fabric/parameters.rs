@@ -1,6 +1,6 @@
 //! The fabric: everything the energies need, in SI.
 
-use super::{BendingLaw, BendingRigidity, TensileLaw};
+use super::{BendingLaw, BendingRigidity, SourceCoefficients, TensileLaw};
 use crate::error::ParamError;
 use serde::{Deserialize, Serialize};
 
@@ -10,6 +10,10 @@ use serde::{Deserialize, Serialize};
 pub struct Fabric {
     /// Mass per unit area, kg/m^2.
     pub area_density: f64,
+    /// Thickness, m (KES-F T). The mid-surface is the simulated one; the thickness is the
+    /// fabric's own half-gap to other layers of cloth.
+    #[serde(default = "default_thickness")]
+    pub thickness: f64,
     /// Tension against strain along the warp (u).
     pub warp: TensileLaw,
     /// Tension against strain along the weft (v).
@@ -30,7 +34,28 @@ pub struct Fabric {
     /// Viscous air drag per unit area, kg/(m^2 s): `F = -drag * area * (v - wind)`.
     #[serde(default)]
     pub drag: f64,
+    /// Coulomb coefficient of the fabric on a body (KES-F MIU where measured); a body
+    /// that sets its own coefficient overrides it. Infinite: no slip.
+    #[serde(default = "default_friction")]
+    pub friction: f64,
 }
+
+/// Thickness of a fabric that does not state one, m: a light woven's.
+pub const DEFAULT_THICKNESS: f64 = 5e-4;
+/// Coulomb coefficient of a fabric that does not state one: cloth on skin or a dress
+/// form is about 0.3 to 0.6.
+pub const DEFAULT_FRICTION: f64 = 0.5;
+
+fn default_thickness() -> f64 {
+    DEFAULT_THICKNESS
+}
+fn default_friction() -> f64 {
+    DEFAULT_FRICTION
+}
+
+/// Strain at which [`Fabric::membrane_stiffness`] reads the tensile laws' secants: on a
+/// J-shaped curve the slope at rest is zero, and a percent is where draped cloth sits.
+const MEMBRANE_STRAIN: f64 = 0.01;
 
 impl Fabric {
     /// A fabric with the same linear law along warp and weft, compression at a tenth of the
@@ -46,6 +71,7 @@ impl Fabric {
         };
         Self {
             area_density,
+            thickness: DEFAULT_THICKNESS,
             warp: law.clone(),
             weft: law,
             compression_warp: 0.1 * tensile_stiffness,
@@ -55,6 +81,7 @@ impl Fabric {
             bending_law: BendingLaw::Quadratic,
             damping: 0.0,
             drag: 0.0,
+            friction: DEFAULT_FRICTION,
         }
     }
 
@@ -62,6 +89,27 @@ impl Fabric {
     /// 1e-5 N*m bending.
     pub fn cotton_like() -> Self {
         Self::isotropic_linear(0.15, 1000.0, 20.0, 1e-5)
+    }
+
+    /// The source's fabric: its bending (with its cosine hinge law) and shear from
+    /// `mu_b` and `mu_s`, isotropic, with the area density and tensile law the source does
+    /// not give; compression is a tenth of the tensile secant stiffness at 1%.
+    pub fn from_source(coefficients: SourceCoefficients, area_density: f64, tensile: TensileLaw) -> Self {
+        let compression = 0.1 * tensile.extension(MEMBRANE_STRAIN).tension / MEMBRANE_STRAIN;
+        Self {
+            area_density,
+            thickness: DEFAULT_THICKNESS,
+            warp: tensile.clone(),
+            weft: tensile,
+            compression_warp: compression,
+            compression_weft: compression,
+            shear_modulus: coefficients.shear_modulus(),
+            bending: BendingRigidity::isotropic(coefficients.bending_rigidity()),
+            bending_law: BendingLaw::SourceCosine,
+            damping: 0.0,
+            drag: 0.0,
+            friction: DEFAULT_FRICTION,
+        }
     }
 
     pub fn with_damping(mut self, beta: f64) -> Self {
@@ -76,6 +124,17 @@ impl Fabric {
         self.bending_law = law;
         self
     }
+    pub fn with_friction(mut self, friction: f64) -> Self {
+        self.friction = friction;
+        self
+    }
+
+    /// A representative in-plane stiffness, N/m: the larger of the warp and weft secant
+    /// stiffnesses at 1% strain (the stiffness itself for linear laws).
+    pub fn membrane_stiffness(&self) -> f64 {
+        let secant = |law: &TensileLaw| law.extension(MEMBRANE_STRAIN).tension / MEMBRANE_STRAIN;
+        secant(&self.warp).max(secant(&self.weft))
+    }
 
     /// Checks every field; the error names the field.
     pub fn validate(&self) -> Result<(), ParamError> {
@@ -89,6 +148,7 @@ impl Fabric {
             ParamError::check(ok, name, value, expected)
         };
         check("area_density", self.area_density, true)?;
+        check("thickness", self.thickness, true)?;
         self.warp.validate("warp")?;
         self.weft.validate("weft")?;
         check("compression_warp", self.compression_warp, true)?;
@@ -100,6 +160,12 @@ impl Fabric {
             check("bending.bias", b, false)?;
         }
         check("damping", self.damping, false)?;
-        check("drag", self.drag, false)
+        check("drag", self.drag, false)?;
+        ParamError::check(
+            self.friction >= 0.0,
+            "friction",
+            self.friction,
+            "a coefficient >= 0 (infinity for no slip)",
+        )
     }
 }

@@ -145,6 +145,13 @@ impl ForceModel {
     pub fn fabric(&self) -> &Fabric {
         &self.fabric
     }
+
+    /// Stiffens the hinges along a clamp (see [`bending::clamp_factor`]).
+    pub fn clamp_hinges(&mut self, mesh: &ClothMesh, pinned: &[bool]) {
+        for h in &mut self.hinges {
+            h.stiffness *= bending::clamp_factor(mesh.uv(), h.v.map(|i| i as usize), pinned);
+        }
+    }
     pub fn masses(&self) -> &[f64] {
         &self.masses
     }

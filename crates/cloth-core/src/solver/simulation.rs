@@ -119,16 +119,12 @@ impl SimulationBuilder {
                 "a positive thickness in m",
             )?;
         }
-        let (model, matrix) = ForceModel::new(&self.mesh, self.fabric);
+        let (mut model, matrix) = ForceModel::new(&self.mesh, self.fabric);
+        model.clamp_hinges(&self.mesh, &pinned);
         let contacts = self.collider.map(|collider| {
             let fabric = model.fabric();
-            let stiffness = 10.0
-                * fabric
-                    .warp
-                    .extension(0.0)
-                    .slope
-                    .max(fabric.weft.extension(0.0).slope);
-            let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness);
+            let stiffness = 10.0 * fabric.membrane_stiffness();
+            let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness, fabric.friction);
             c.particles
                 .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
             c
