@@ -142,7 +142,7 @@ pub fn fixed_angle(fabric: &Fabric, cell: f64) -> Result<FixedAngle, ValidationE
     let step_up = a < target;
     loop {
         let next = if step_up { k + 1 } else { k - 1 };
-        if next < 1 || next > 10_000 {
+        if !(1..=10_000).contains(&next) {
             return Err(ValidationError::NoCrossing { cells: next });
         }
         let b = angle(next)?;

@@ -3,7 +3,8 @@
 //! `phi` is the shear angle, the departure of the angle between the warp and weft
 //! directions `w_u`, `w_v` from 90 degrees: `sin phi = cos(angle) = c`. Per triangle
 //! `E = (G/2) A phi^2` with A the rest area (the source's `l1 l2 / 2` for a grid cell's
-//! triangle) and G the shear rigidity per radian (`mu_s = G/2`). The exact Hessian is
+//! triangle) and G the shear rigidity per radian (`mu_s = G/2` for phi in radians; the
+//! source's phi is in degrees, see [`crate::fabric::SourceCoefficients`]). The exact Hessian is
 //! `E_cc g g^T + E_c d^2c/dx^2`; the projected one keeps the first, PSD term
 //! (`E_cc > 0`), which is all of it at zero shear.
 

@@ -23,7 +23,8 @@ pub struct Fabric {
     /// Stiffness in compression along the weft, N/m.
     pub compression_weft: f64,
     /// Shear rigidity G, N/m per radian: energy density `G/2 phi^2`, i.e. the source's
-    /// `T = mu_s (l1 l2 / 2) phi^2` with `mu_s = G/2` and phi in radians.
+    /// `T = mu_s (l1 l2 / 2) phi^2` with `mu_s = G/2` and phi in radians (the source's
+    /// own phi is in degrees: see [`SourceCoefficients`]).
     pub shear_modulus: f64,
     pub bending: BendingRigidity,
     #[serde(default)]
