@@ -6,8 +6,8 @@
 //! pinned column. The strip runs along the warp, so the warp rigidity bends it.
 
 use super::elastica::elastica_tip;
-use super::ValidationError;
-use cloth_core::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder, StopReason};
+use super::{settle, ValidationError};
+use cloth_core::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder};
 
 /// Width of the test strip, m.
 pub const STRIP_WIDTH: f64 = 0.025;
@@ -86,24 +86,19 @@ impl Cantilever {
         let mut sim = SimulationBuilder::new(mesh, self.fabric.clone())
             .pins(pins)
             .build()?;
-        let out = sim.run_to_rest(&RestCriteria {
+        let criteria = RestCriteria {
             tolerance: 1e-9,
             consecutive_steps: 20,
             max_steps: 5000,
-        })?;
-        if out.reason != StopReason::AtRest {
-            return Err(ValidationError::NotAtRest {
-                test: "cantilever",
-                steps: out.steps,
-            });
-        }
+        };
+        let steps = settle(&mut sim, &criteria, "cantilever")?;
         let x = sim.positions();
         let edge = x[g.index(1, 0)];
         let mean = |f: &dyn Fn(usize) -> f64| (0..ny).map(f).sum::<f64>() / ny as f64;
         Ok(CantileverRest {
             drop: mean(&|j| edge.z - x[g.index(nx - 1, j)].z),
             reach: mean(&|j| x[g.index(nx - 1, j)].x - edge.x),
-            steps: out.steps,
+            steps,
         })
     }
 }

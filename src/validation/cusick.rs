@@ -6,9 +6,9 @@
 //! from flat and comes to rest. The drape coefficient is read from the area of the
 //! vertical projection, and the folds (nodes) from the outline of that projection.
 
-use super::ValidationError;
+use super::{settle, ValidationError};
 use crate::meshing::{circle, triangulate_polygon};
-use cloth_core::{Fabric, Pin, RestCriteria, SimulationBuilder, SolverSettings, StopReason, Vec3};
+use cloth_core::{Fabric, Pin, RestCriteria, SimulationBuilder, SolverSettings, Vec3};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
@@ -83,13 +83,7 @@ impl CusickTest {
             })
             .pins(pins)
             .build()?;
-        let out = sim.run_to_rest(&self.rest)?;
-        if out.reason != StopReason::AtRest {
-            return Err(ValidationError::NotAtRest {
-                test: "Cusick drape",
-                steps: out.steps,
-            });
-        }
+        let steps = settle(&mut sim, &self.rest, "Cusick drape")?;
         let positions = sim.positions().to_vec();
         let shadow = Shadow::new(&positions, &triangles);
         let a_disk = PI * SUPPORT_RADIUS * SUPPORT_RADIUS;
@@ -100,7 +94,7 @@ impl CusickTest {
             drape_coefficient,
             folds: count_folds(&outline, FOLD_DEPTH),
             outline,
-            steps: out.steps,
+            steps,
             positions,
             triangles,
         })

@@ -2,8 +2,8 @@
 //! top carries the weight below, so the strain there is the tensile law's inverse at that
 //! tension, whatever the law's shape.
 
-use super::ValidationError;
-use cloth_core::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder, StopReason, Vec3};
+use super::{settle, ValidationError};
+use cloth_core::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder, Vec3};
 
 /// A strip of `length` x `width` (m) hanging along the weft (v) from pins on its top row.
 #[derive(Debug, Clone)]
@@ -37,17 +37,12 @@ impl HangingStrip {
         let mut sim = SimulationBuilder::new(mesh, self.fabric.clone().with_damping(0.01))
             .pins((0..columns).map(|i| Pin::fixed(g.index(i, 0))))
             .build()?;
-        let out = sim.run_to_rest(&RestCriteria {
+        let criteria = RestCriteria {
             tolerance: 1e-8,
             consecutive_steps: 20,
             max_steps: 20_000,
-        })?;
-        if out.reason != StopReason::AtRest {
-            return Err(ValidationError::NotAtRest {
-                test: "hanging strip",
-                steps: out.steps,
-            });
-        }
+        };
+        let steps = settle(&mut sim, &criteria, "hanging strip")?;
         let x = sim.positions();
         let dv = self.length / (self.rows - 1) as f64;
         let top_strain = (0..columns)
@@ -60,7 +55,7 @@ impl HangingStrip {
             top_strain,
             top_tension,
             expected_strain: self.fabric.weft.strain_at(top_tension),
-            steps: out.steps,
+            steps,
         })
     }
 }

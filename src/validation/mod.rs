@@ -13,7 +13,20 @@ pub use cusick::{CusickResult, CusickTest};
 pub use elastica::{elastica_tip, ElasticaTip};
 pub use hanging_strip::{HangingRest, HangingStrip};
 
-use cloth_core::{MeshError, ParamError, SimError};
+use cloth_core::{MeshError, ParamError, RestCriteria, SimError, Simulation, StopReason};
+
+/// Runs `sim` to rest; reaching the step limit is an error naming the test. Returns the
+/// steps taken.
+fn settle(sim: &mut Simulation, criteria: &RestCriteria, test: &'static str) -> Result<u64, ValidationError> {
+    let out = sim.run_to_rest(criteria)?;
+    match out.reason {
+        StopReason::AtRest => Ok(out.steps),
+        _ => Err(ValidationError::NotAtRest {
+            test,
+            steps: out.steps,
+        }),
+    }
+}
 
 /// Why a validation run gave no result.
 #[derive(Debug, thiserror::Error)]
