@@ -6,10 +6,10 @@
 //!
 //! SCENE is one of sphere, table, turning, corner, plate.
 
+use cloth::obj::write_cloth_obj;
 use cloth::scenes::{CubeCorner, FallingPlate, Scene, SceneError, SphereDrop, Tablecloth, TurningSphere};
 use cloth::{RestCriteria, StopReason, StrainReport};
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 fn build(name: &str, n: Option<usize>) -> Result<(Scene, f64), SceneError> {
@@ -44,17 +44,6 @@ fn build(name: &str, n: Option<usize>) -> Result<(Scene, f64), SceneError> {
             std::process::exit(2);
         }
     })
-}
-
-fn write_cloth_obj(path: &Path, scene: &Scene) -> std::io::Result<()> {
-    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    for p in scene.simulation.positions() {
-        writeln!(out, "v {} {} {}", p.x, p.y, p.z)?;
-    }
-    for t in scene.simulation.mesh().triangles() {
-        writeln!(out, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1)?;
-    }
-    Ok(())
 }
 
 fn main() {
@@ -127,7 +116,12 @@ fn main() {
         strain.max_weft,
     );
     let written = std::fs::create_dir_all(&out_dir).and_then(|_| {
-        write_cloth_obj(&out_dir.join(format!("{name}_cloth.obj")), &scene)?;
+        let sim = &scene.simulation;
+        write_cloth_obj(
+            &out_dir.join(format!("{name}_cloth.obj")),
+            sim.positions(),
+            sim.mesh().triangles(),
+        )?;
         for (k, body) in scene.bodies.bodies().iter().enumerate() {
             body.surface_at(scene.simulation.time())
                 .write_obj(&out_dir.join(format!("{name}_body{k}.obj")))?;

@@ -7,12 +7,12 @@
 //! strip with a J-shaped law. Writes each draped Cusick specimen as an OBJ and its shadow
 //! as an SVG to `target/validation/`.
 
+use cloth::obj::write_cloth_obj;
 use cloth::presets::FabricLibrary;
 use cloth::validation::cantilever::bending_length;
 use cloth::validation::cusick::{SPECIMEN_RADIUS, SUPPORT_RADIUS};
 use cloth::validation::{fixed_angle, Cantilever, CusickResult, CusickTest, HangingStrip};
 use std::error::Error;
-use std::fmt::Write as _;
 use std::path::Path;
 
 /// The measured drape ranges of fabrics.md, by preset.
@@ -93,7 +93,8 @@ fn main() -> Result<(), Box<dyn Error>> {
             "| {} | {:.1}% | {range} | {} | {} |",
             p.name, result.drape_coefficient, result.folds, result.steps
         );
-        write_obj(&out.join(format!("cusick_{}.obj", p.name)), &result)?;
+        let obj = out.join(format!("cusick_{}.obj", p.name));
+        write_cloth_obj(&obj, &result.positions, &result.triangles)?;
         write_svg(&out.join(format!("cusick_{}.svg", p.name)), &p.name, &result)?;
     }
 
@@ -116,17 +117,6 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
     println!("\nDraped specimens: {}/cusick_*.obj and .svg", out.display());
     Ok(())
-}
-
-fn write_obj(path: &Path, result: &CusickResult) -> std::io::Result<()> {
-    let mut s = String::new();
-    for p in &result.positions {
-        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
-    }
-    for t in &result.triangles {
-        let _ = writeln!(s, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1);
-    }
-    std::fs::write(path, s)
 }
 
 /// The shadow's outline from above, with the specimen and support circles.

@@ -5,6 +5,7 @@ pub use cloth_collide as collide;
 pub use cloth_core::*;
 
 pub mod meshing;
+pub mod obj;
 pub mod presets;
 pub mod scenes;
 pub mod validation;

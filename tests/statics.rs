@@ -1,49 +1,36 @@
 //! Static equilibria against analytic references.
 
+use cloth::validation::HangingStrip;
 use cloth::{
     Fabric, GridBuilder, Pin, RestCriteria, RestOutcome, Simulation, SimulationBuilder, SolverSettings,
     StopReason, Vec3,
 };
 
-/// A vertical strip pinned along its top edge: the strain at the top is rho g L / k.
+/// A vertical strip pinned along its top edge: the strain at the top is the law's at the
+/// weight below, rho g L / k for a linear law (the J-shaped law is in fabric_validation.rs).
 #[test]
 fn hanging_strip_top_strain_is_rho_g_l_over_k() {
-    let (length, width, k, rho) = (1.0, 0.05, 50.0, 0.15);
-    let (nx, ny) = (6, 101);
-    let mesh = GridBuilder::new(nx, ny)
-        .size(width, length)
-        .axes(Vec3::x(), -Vec3::z())
-        .build()
-        .unwrap();
-    let g = mesh.grid().unwrap();
-    let fabric = Fabric::isotropic_linear(rho, k, 5.0, 1e-6).with_damping(0.01);
-    let mut sim = SimulationBuilder::new(mesh, fabric)
-        .pins((0..nx).map(|i| Pin::fixed(g.index(i, 0))))
-        .build()
-        .unwrap();
-    let out = sim
-        .run_to_rest(&RestCriteria {
-            tolerance: 1e-8,
-            consecutive_steps: 20,
-            max_steps: 5000,
-        })
-        .unwrap();
-    assert_eq!(out.reason, StopReason::AtRest, "{out:?}");
-    let x = sim.positions();
-    let top: f64 = (0..nx)
-        .map(|i| (x[g.index(i, 1)] - x[g.index(i, 0)]).norm() / (length / (ny - 1) as f64) - 1.0)
-        .sum::<f64>()
-        / nx as f64;
+    let (length, k, rho) = (1.0, 50.0, 0.15);
+    let rest = HangingStrip {
+        fabric: Fabric::isotropic_linear(rho, k, 5.0, 1e-6),
+        length,
+        width: 0.05,
+        rows: 101,
+    }
+    .run()
+    .unwrap();
     let expected = rho * 9.81 * length / k;
-    let err = (top - expected).abs() / expected;
+    let err = (rest.top_strain - expected).abs() / expected;
     println!(
-        "top strain {top:.6}, rho g L / k = {expected:.6}, error {:.2}% ({} steps)",
+        "top strain {:.6}, rho g L / k = {expected:.6}, error {:.2}% ({} steps)",
+        rest.top_strain,
         100.0 * err,
-        out.steps
+        rest.steps
     );
     assert!(
         err < 0.02,
-        "top strain {top} vs {expected}: {:.2}% off",
+        "top strain {} vs {expected}: {:.2}% off",
+        rest.top_strain,
         100.0 * err
     );
 }
@@ -62,10 +49,10 @@ fn settle(sim: &mut Simulation) -> RestOutcome {
 }
 
 /// A strip clamped at one end bends under its own weight. For a small load
-/// (Gamma = q L^3 / B = 0.29) the tip drop is the Euler-Bernoulli q L^4 / (8 B). The
-/// discrete clamp and free end leave an error of first order in the cell size, so the
-/// drop must approach the reference as the mesh is refined, and the first-order
-/// (Richardson) extrapolation of the two resolutions must land on it.
+/// (Gamma = q L^3 / B = 0.29) the tip drop is the Euler-Bernoulli q L^4 / (8 B). The drop
+/// must approach the reference as the mesh is refined, and the first-order (Richardson)
+/// extrapolation of the two resolutions must land on it. (Since hinges along a clamp bend
+/// in their free wing alone, the errors are under 1% at both resolutions.)
 #[test]
 fn clamped_strip_tip_drop_converges_to_beam_theory() {
     let (overhang, width, rho, b): (f64, f64, f64, f64) = (0.1, 0.02, 0.15, 5e-3);

@@ -10,11 +10,8 @@ use serde::Deserialize;
 pub(crate) struct PresetRecord {
     pub description: String,
     pub origin: String,
-    #[serde(default)]
     pub si: Option<Fabric>,
-    #[serde(default)]
     pub kes: Option<KesMeasurement>,
-    #[serde(default)]
     pub source: Option<SourceRecord>,
 }
 

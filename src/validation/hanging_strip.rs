@@ -34,7 +34,8 @@ impl HangingStrip {
             .axes(Vec3::x(), -Vec3::z())
             .build()?;
         let g = mesh.grid().expect("a grid mesh");
-        let mut sim = SimulationBuilder::new(mesh, self.fabric.clone().with_damping(0.01))
+        let fabric = self.fabric.clone().with_damping(self.fabric.damping + 0.01);
+        let mut sim = SimulationBuilder::new(mesh, fabric)
             .pins((0..columns).map(|i| Pin::fixed(g.index(i, 0))))
             .build()?;
         let criteria = RestCriteria {

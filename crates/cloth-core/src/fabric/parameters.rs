@@ -58,6 +58,10 @@ fn default_friction() -> f64 {
 /// J-shaped curve the slope at rest is zero, and a percent is where draped cloth sits.
 const MEMBRANE_STRAIN: f64 = 0.01;
 
+fn membrane_secant(law: &TensileLaw) -> f64 {
+    law.extension(MEMBRANE_STRAIN).tension / MEMBRANE_STRAIN
+}
+
 impl Fabric {
     /// A fabric with the same linear law along warp and weft, compression at a tenth of the
     /// tensile stiffness, and isotropic bending: the simplest fully specified fabric.
@@ -96,7 +100,7 @@ impl Fabric {
     /// `mu_b` and `mu_s`, isotropic, with the area density and tensile law the source does
     /// not give; compression is a tenth of the tensile secant stiffness at 1%.
     pub fn from_source(coefficients: SourceCoefficients, area_density: f64, tensile: TensileLaw) -> Self {
-        let compression = 0.1 * tensile.extension(MEMBRANE_STRAIN).tension / MEMBRANE_STRAIN;
+        let compression = 0.1 * membrane_secant(&tensile);
         Self {
             area_density,
             thickness: DEFAULT_THICKNESS,
@@ -133,8 +137,7 @@ impl Fabric {
     /// A representative in-plane stiffness, N/m: the larger of the warp and weft secant
     /// stiffnesses at 1% strain (the stiffness itself for linear laws).
     pub fn membrane_stiffness(&self) -> f64 {
-        let secant = |law: &TensileLaw| law.extension(MEMBRANE_STRAIN).tension / MEMBRANE_STRAIN;
-        secant(&self.warp).max(secant(&self.weft))
+        membrane_secant(&self.warp).max(membrane_secant(&self.weft))
     }
 
     /// Checks every field; the error names the field.
