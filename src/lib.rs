@@ -4,7 +4,7 @@
 pub use cloth_collide as collide;
 pub use cloth_core::*;
 
-pub mod meshing;
+pub use cloth_garment as garment;
 pub mod obj;
 pub mod presets;
 pub mod scenes;

@@ -38,7 +38,7 @@ pub enum ValidationError {
     #[error(transparent)]
     Sim(#[from] SimError),
     #[error("meshing the specimen: {0}")]
-    Meshing(#[from] crate::meshing::MeshingError),
+    Meshing(#[from] cloth_garment::meshing::MeshingError),
     #[error("{test}: not at rest after {steps} steps")]
     NotAtRest { test: &'static str, steps: u64 },
     #[error("fixed-angle cantilever: the chord does not cross 41.5 degrees by an overhang of {cells} cells")]

@@ -56,7 +56,7 @@ pub enum ParamError {
 
 impl ParamError {
     /// `Ok` when `ok`, otherwise the out-of-range error for `name`.
-    pub(crate) fn check(
+    pub fn check(
         ok: bool,
         name: &'static str,
         value: f64,

@@ -29,7 +29,7 @@ pub use mesh::{ClothMesh, GridBuilder, GridDiagonals};
 pub use metrics::{GridStretch, StrainReport};
 pub use solver::{
     Constraint, ConstraintKind, Integrator, PcgSettings, Pin, PinMotion, RestCriteria, RestOutcome,
-    Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
+    SeamPull, Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
 };
 
 /// 3-vectors and 3x3 blocks used throughout the engine.

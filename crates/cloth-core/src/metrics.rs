@@ -20,11 +20,9 @@ pub struct StrainReport {
 impl StrainReport {
     /// Strains of `mesh` at `positions`: `100 (|w_u| - 1)` and `100 (|w_v| - 1)`.
     pub fn new(mesh: &ClothMesh, positions: &[Vec3]) -> Self {
-        let uv = mesh.uv();
         let (mut warp, mut weft) = (Vec::new(), Vec::new());
-        for t in mesh.triangles() {
-            let rest =
-                TriangleRest::new(t.map(|i| uv[i])).expect("validated mesh has no degenerate triangle");
+        for (k, t) in mesh.triangles().iter().enumerate() {
+            let rest = TriangleRest::new(mesh.corner_uv(k)).expect("validated mesh has no degenerate triangle");
             let (wu, wv) = rest.deformation(&t.map(|i| positions[i]));
             warp.push(100.0 * (wu.norm() - 1.0));
             weft.push(100.0 * (wv.norm() - 1.0));

@@ -15,7 +15,7 @@
 
 use super::{HessianMode, Local};
 use crate::fabric::{BendingLaw, BendingRigidity};
-use crate::mesh::ClothMesh;
+use crate::mesh::{ClothMesh, Hinge};
 use crate::{Mat3, Vec3};
 
 /// Signed bend angle of a hinge with its gradient (and Hessian) over (x0, x1, x2, x3).
@@ -154,31 +154,35 @@ pub fn add_bending(law: BendingLaw, k: f64, x: &[Vec3; 4], mode: HessianMode, ou
 /// it a clamp sits half a cell inside the clamped region, an error of first order in the
 /// cell size (twice the cell over the overhang, relative, on a cantilever's tip drop).
 /// `ids` are the hinge's (edge, edge, opposite, opposite) vertices.
-pub fn clamp_factor(uv: &[nalgebra::Vector2<f64>], ids: [usize; 4], pinned: &[bool]) -> f64 {
+/// `wing_areas` are the rest areas of the triangles holding `ids[2]` and `ids[3]`.
+pub fn clamp_factor(ids: [usize; 4], wing_areas: [f64; 2], pinned: &[bool]) -> f64 {
     let wing_pinned = |o: usize| pinned[ids[0]] && pinned[ids[1]] && pinned[ids[o]];
-    let area = |o: usize| {
-        let (e, f) = (uv[ids[1]] - uv[ids[0]], uv[ids[o]] - uv[ids[0]]);
-        0.5 * (e.x * f.y - e.y * f.x).abs()
-    };
+    let [a2, a3] = wing_areas;
     match (wing_pinned(2), wing_pinned(3)) {
-        (true, false) => (area(2) + area(3)) / area(3),
-        (false, true) => (area(2) + area(3)) / area(2),
+        (true, false) => (a2 + a3) / a3,
+        (false, true) => (a2 + a3) / a2,
         _ => 1.0,
     }
 }
 
-/// Rest geometry of a hinge in material space: `|e|^2 / (A1 + A2)` and the fold direction.
-fn hinge_rest(mesh: &ClothMesh, edge: [usize; 2], opposite: [usize; 2]) -> (f64, f64, f64) {
-    let uv = mesh.uv();
-    let e = uv[edge[1]] - uv[edge[0]];
-    let tri_area = |o: usize| {
-        let f = uv[o] - uv[edge[0]];
-        0.5 * (e.x * f.y - e.y * f.x).abs()
-    };
-    let len2 = e.norm_squared();
-    let ratio = len2 / (tri_area(opposite[0]) + tri_area(opposite[1]));
-    let len = len2.sqrt();
-    (ratio, e.x / len, e.y / len)
+/// The hinge's edge in each wing's material coordinates (edge[0] to edge[1]). Across a
+/// seam the two panels see the edge at their own angles to their grain.
+fn wing_edges(mesh: &ClothMesh, h: &Hinge) -> [nalgebra::Vector2<f64>; 2] {
+    h.triangles.map(|t| {
+        let tri = mesh.triangles()[t];
+        let c = mesh.corner_uv(t);
+        let at = |v: usize| c[tri.iter().position(|&i| i == v).expect("hinge edge is on its wing")];
+        at(h.edge[1]) - at(h.edge[0])
+    })
+}
+
+/// Rest geometry of a hinge in material space: `|e|^2 / (A1 + A2)` and the fold
+/// direction in each wing.
+fn hinge_rest(mesh: &ClothMesh, h: &Hinge) -> (f64, [nalgebra::Vector2<f64>; 2]) {
+    let e = wing_edges(mesh, h);
+    let len2 = e[0].norm() * e[1].norm();
+    let areas = mesh.rest_area(h.triangles[0]) + mesh.rest_area(h.triangles[1]);
+    (len2 / areas, e.map(|e| e / e.norm()))
 }
 
 /// Calibration of the hinge stiffness against the continuum rigidity: the factors
@@ -211,7 +215,10 @@ pub fn calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> [f64; 2] {
             .build()
             .ok()
     });
-    relaxed_calibration(patch.as_ref().unwrap_or(mesh), rigidity).unwrap_or([1.0, 1.0])
+    // A sewn garment is calibrated on its panels, where material coordinates are smooth.
+    let cut = (patch.is_none() && mesh.has_seams()).then(|| mesh.cut_at_seams());
+    let target = patch.as_ref().or(cut.as_ref()).unwrap_or(mesh);
+    relaxed_calibration(target, rigidity).unwrap_or([1.0, 1.0])
 }
 
 /// Rings held at w = 0, and the first ring whose triangles are counted.
@@ -258,7 +265,9 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
             let local = ids.map(|i| uv[i] - o);
             let dh = dihedral(&local.map(|q| Vec3::new(q.x, q.y, 0.0)), false)?;
             let dz = dh.grad.map(|g| g.z);
-            let (ratio, tu, tv) = hinge_rest(mesh, h.edge, h.opposite);
+            // Calibration meshes have no seams: both wings see the same edge.
+            let (ratio, [dir, _]) = hinge_rest(mesh, h);
+            let (tu, tv) = (dir.x, dir.y);
             // psi ignores affine fields, so local coordinates serve.
             let mut modes = nalgebra::Vector3::zeros();
             for k in 0..4 {
@@ -466,8 +475,10 @@ pub fn hinge_stiffnesses(mesh: &ClothMesh, rigidity: &BendingRigidity, kappa: [f
     mesh.hinges()
         .iter()
         .map(|h| {
-            let (ratio, tu, tv) = hinge_rest(mesh, h.edge, h.opposite);
-            scaled.along_fold(tu, tv) * ratio
+            // Across a seam each panel folds at its own angle to its grain: the mean.
+            let (ratio, dirs) = hinge_rest(mesh, h);
+            let rigidity: f64 = dirs.iter().map(|d| scaled.along_fold(d.x, d.y)).sum::<f64>() / 2.0;
+            rigidity * ratio
         })
         .collect()
 }

@@ -27,10 +27,16 @@ impl GridShape {
 /// A triangle mesh whose vertices carry 3D positions and 2D material coordinates
 /// `(u, v)` in metres (u along the warp, v along the weft). The material
 /// coordinates define the rest (flat) state.
+///
+/// A garment's mesh is flat piecewise: a vertex welded along a seam belongs to two
+/// panels and has a material position in each. So the rest state is kept per triangle
+/// corner ([`corner_uv`](Self::corner_uv)); a mesh made from per-vertex coordinates has
+/// corners that agree with them.
 #[derive(Debug, Clone)]
 pub struct ClothMesh {
     positions: Vec<Vec3>,
     uv: Vec<Vector2<f64>>,
+    corner_uv: Vec<[Vector2<f64>; 3]>,
     triangles: Vec<[usize; 3]>,
     edges: Vec<[usize; 2]>,
     hinges: Vec<Hinge>,
@@ -44,27 +50,56 @@ impl ClothMesh {
         uv: Vec<Vector2<f64>>,
         triangles: Vec<[usize; 3]>,
     ) -> Result<Self, MeshError> {
-        if triangles.is_empty() {
-            return Err(MeshError::Empty);
-        }
         if positions.len() != uv.len() {
             return Err(MeshError::LengthMismatch {
                 positions: positions.len(),
                 uvs: uv.len(),
             });
         }
-        for (vertex, p) in positions.iter().enumerate() {
-            if !p.iter().all(|c| c.is_finite()) {
-                return Err(MeshError::NonFinite {
-                    vertex,
-                    field: "position",
-                });
-            }
-            if !uv[vertex].iter().all(|c| c.is_finite()) {
-                return Err(MeshError::NonFinite { vertex, field: "uv" });
+        Self::check_indices(positions.len(), &triangles)?;
+        let corner_uv = triangles.iter().map(|t| t.map(|i| uv[i])).collect();
+        Self::build(positions, uv, corner_uv, triangles)
+    }
+
+    /// Builds and validates a mesh whose material coordinates are given per triangle
+    /// corner: a garment's panels sewn together, where a seam vertex has a material
+    /// position in each panel. [`uv`](Self::uv) then reports, for each vertex, the
+    /// corner of the first triangle that uses it.
+    pub fn with_corner_uv(
+        positions: Vec<Vec3>,
+        triangles: Vec<[usize; 3]>,
+        corner_uv: Vec<[Vector2<f64>; 3]>,
+    ) -> Result<Self, MeshError> {
+        if corner_uv.len() != triangles.len() {
+            return Err(MeshError::LengthMismatch {
+                positions: triangles.len(),
+                uvs: corner_uv.len(),
+            });
+        }
+        Self::check_indices(positions.len(), &triangles)?;
+        let mut uv = vec![Vector2::new(f64::NAN, f64::NAN); positions.len()];
+        let mut seen = vec![false; positions.len()];
+        for (tri, corners) in triangles.iter().zip(&corner_uv) {
+            for (&i, c) in tri.iter().zip(corners) {
+                if !std::mem::replace(&mut seen[i], true) {
+                    uv[i] = *c;
+                }
             }
         }
-        let n = positions.len();
+        // An unused vertex keeps a finite placeholder so the unused-vertex error, not a
+        // non-finite one, names it.
+        for (u, s) in uv.iter_mut().zip(&seen) {
+            if !s {
+                *u = Vector2::zeros();
+            }
+        }
+        Self::build(positions, uv, corner_uv, triangles)
+    }
+
+    fn check_indices(n: usize, triangles: &[[usize; 3]]) -> Result<(), MeshError> {
+        if triangles.is_empty() {
+            return Err(MeshError::Empty);
+        }
         for (t, tri) in triangles.iter().enumerate() {
             for (k, &index) in tri.iter().enumerate() {
                 if index >= n {
@@ -78,10 +113,40 @@ impl ClothMesh {
                     return Err(MeshError::RepeatedVertex { triangle: t, index });
                 }
             }
+        }
+        Ok(())
+    }
+
+    fn build(
+        positions: Vec<Vec3>,
+        uv: Vec<Vector2<f64>>,
+        corner_uv: Vec<[Vector2<f64>; 3]>,
+        triangles: Vec<[usize; 3]>,
+    ) -> Result<Self, MeshError> {
+        for (vertex, p) in positions.iter().enumerate() {
+            if !p.iter().all(|c| c.is_finite()) {
+                return Err(MeshError::NonFinite {
+                    vertex,
+                    field: "position",
+                });
+            }
+            if !uv[vertex].iter().all(|c| c.is_finite()) {
+                return Err(MeshError::NonFinite { vertex, field: "uv" });
+            }
+        }
+        let n = positions.len();
+        for (t, tri) in triangles.iter().enumerate() {
+            let corners = corner_uv[t];
+            if let Some(k) = corners.iter().position(|c| !c.iter().all(|x| x.is_finite())) {
+                return Err(MeshError::NonFinite {
+                    vertex: tri[k],
+                    field: "uv",
+                });
+            }
             let [a, b, c] = *tri;
-            let (e1, e2) = (uv[b] - uv[a], uv[c] - uv[a]);
+            let (e1, e2) = (corners[1] - corners[0], corners[2] - corners[0]);
             let area_uv = 0.5 * (e1.x * e2.y - e1.y * e2.x).abs();
-            if is_degenerate(area_uv, [uv[a], uv[b], uv[c]].map(|p| p.push(0.0))) {
+            if is_degenerate(area_uv, corners.map(|p| p.push(0.0))) {
                 return Err(MeshError::DegenerateTriangle {
                     triangle: t,
                     space: "uv",
@@ -107,6 +172,7 @@ impl ClothMesh {
         Ok(Self {
             positions,
             uv,
+            corner_uv,
             triangles,
             edges,
             hinges,
@@ -122,8 +188,43 @@ impl ClothMesh {
     pub fn positions(&self) -> &[Vec3] {
         &self.positions
     }
+    /// Each vertex's material coordinates. On a seam a vertex has one in each panel;
+    /// this is that of its first triangle, and the rest state is [`corner_uv`](Self::corner_uv).
     pub fn uv(&self) -> &[Vector2<f64>] {
         &self.uv
+    }
+    /// The material coordinates of triangle `t`'s corners: its rest shape.
+    pub fn corner_uv(&self, t: usize) -> [Vector2<f64>; 3] {
+        self.corner_uv[t]
+    }
+    /// Whether some vertex has different material coordinates in different triangles (a
+    /// sewn garment), so that [`uv`](Self::uv) alone does not give the rest state.
+    pub fn has_seams(&self) -> bool {
+        self.triangles
+            .iter()
+            .zip(&self.corner_uv)
+            .any(|(t, c)| t.iter().zip(c).any(|(&i, c)| *c != self.uv[i]))
+    }
+    /// The same triangles with every seam vertex split into one vertex per panel, so each
+    /// vertex has one material position: the panels laid out unsewn, in place.
+    pub fn cut_at_seams(&self) -> ClothMesh {
+        let mut ids: std::collections::HashMap<(usize, [u64; 2]), usize> = std::collections::HashMap::new();
+        let (mut positions, mut uv) = (Vec::new(), Vec::new());
+        let triangles = self
+            .triangles
+            .iter()
+            .zip(&self.corner_uv)
+            .map(|(t, c)| {
+                std::array::from_fn(|k| {
+                    *ids.entry((t[k], [c[k].x.to_bits(), c[k].y.to_bits()])).or_insert_with(|| {
+                        positions.push(self.positions[t[k]]);
+                        uv.push(c[k]);
+                        uv.len() - 1
+                    })
+                })
+            })
+            .collect();
+        ClothMesh::new(positions, uv, triangles).expect("cutting a valid mesh keeps it valid")
     }
     pub fn triangles(&self) -> &[[usize; 3]] {
         &self.triangles
@@ -145,8 +246,8 @@ impl ClothMesh {
 
     /// Rest (material) area of triangle `t`.
     pub fn rest_area(&self, t: usize) -> f64 {
-        let [a, b, c] = self.triangles[t];
-        let (e1, e2) = (self.uv[b] - self.uv[a], self.uv[c] - self.uv[a]);
+        let [a, b, c] = self.corner_uv[t];
+        let (e1, e2) = (b - a, c - a);
         0.5 * (e1.x * e2.y - e1.y * e2.x).abs()
     }
 

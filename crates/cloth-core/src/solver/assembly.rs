@@ -30,7 +30,25 @@ struct TriElement {
 struct HingeElement {
     v: [u32; 4],
     stiffness: f64,
+    /// Rest areas of the wings holding `v[2]` and `v[3]`.
+    wing_areas: [f64; 2],
     slots: [u32; 16],
+}
+
+/// Two particles a seam pulls together while it is sewn.
+#[derive(Debug, Clone)]
+struct SeamElement {
+    v: [u32; 2],
+    slots: [u32; 4],
+}
+
+/// How hard the seams pull: a zero-length spring of `stiffness` (N/m) per pair up to a
+/// gap of `reach` (m), and a constant pull of `stiffness * reach` beyond, so a wide gap
+/// is closed by a bounded force instead of one that tears the panels.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SeamPull {
+    pub stiffness: f64,
+    pub reach: f64,
 }
 
 /// A raw view for disjoint parallel writes (see the module comment for why they are disjoint).
@@ -63,6 +81,10 @@ pub(crate) struct ForceModel {
     tri_colors: Vec<Range<usize>>,
     hinges: Vec<HingeElement>,
     hinge_colors: Vec<Range<usize>>,
+    seams: Vec<SeamElement>,
+    seam_colors: Vec<Range<usize>>,
+    seam_energy: Vec<f64>,
+    seam_pull: SeamPull,
     masses: Vec<f64>,
     vertex_area: Vec<f64>,
     tri_energy: Vec<f64>,
@@ -71,8 +93,14 @@ pub(crate) struct ForceModel {
 }
 
 impl ForceModel {
-    /// Builds the elements and the matrix pattern they fill.
-    pub fn new(mesh: &ClothMesh, fabric: Fabric) -> (Self, BlockSparse) {
+    /// Builds the elements and the matrix pattern they fill; `seams` are the particle
+    /// pairs that seam forces may pull together (see [`SeamPull`]).
+    pub fn new(
+        mesh: &ClothMesh,
+        fabric: Fabric,
+        seams: &[[usize; 2]],
+        calibration: Option<[f64; 2]>,
+    ) -> (Self, BlockSparse) {
         let n = mesh.vertex_count();
         let mut pairs = Vec::new();
         for t in mesh.triangles() {
@@ -81,6 +109,7 @@ impl ForceModel {
         for h in mesh.hinges() {
             pairs.push((h.opposite[0], h.opposite[1]));
         }
+        pairs.extend(seams.iter().map(|&[a, b]| (a, b)));
         let matrix = BlockSparse::from_pairs(n, pairs);
         let slots = |v: &[usize]| -> Vec<u32> {
             let mut s = Vec::with_capacity(v.len() * v.len());
@@ -92,17 +121,17 @@ impl ForceModel {
             s
         };
 
-        let uv = mesh.uv();
         let tris: Vec<TriElement> = mesh
             .triangles()
             .iter()
-            .map(|t| TriElement {
+            .enumerate()
+            .map(|(k, t)| TriElement {
                 v: t.map(|i| i as u32),
-                rest: TriangleRest::new(t.map(|i| uv[i])).expect("validated mesh has no degenerate triangle"),
+                rest: TriangleRest::new(mesh.corner_uv(k)).expect("validated mesh has no degenerate triangle"),
                 slots: slots(t).try_into().expect("9 slots"),
             })
             .collect();
-        let kappa = bending::calibration(mesh, &fabric.bending);
+        let kappa = calibration.unwrap_or_else(|| bending::calibration(mesh, &fabric.bending));
         let stiffness = bending::hinge_stiffnesses(mesh, &fabric.bending, kappa);
         let hinges: Vec<HingeElement> = mesh
             .hinges()
@@ -113,12 +142,21 @@ impl ForceModel {
                 HingeElement {
                     v: v.map(|i| i as u32),
                     stiffness: k,
+                    wing_areas: h.triangles.map(|t| mesh.rest_area(t)),
                     slots: slots(&v).try_into().expect("16 slots"),
                 }
             })
             .collect();
+        let seams: Vec<SeamElement> = seams
+            .iter()
+            .map(|v| SeamElement {
+                v: v.map(|i| i as u32),
+                slots: slots(v).try_into().expect("4 slots"),
+            })
+            .collect();
         let (tris, tri_colors) = color(tris, n, |e| &e.v);
         let (hinges, hinge_colors) = color(hinges, n, |e| &e.v);
+        let (seams, seam_colors) = color(seams, n, |e| &e.v);
 
         let mut vertex_area = vec![0.0; n];
         for e in &tris {
@@ -135,6 +173,10 @@ impl ForceModel {
             tri_colors,
             hinges,
             hinge_colors,
+            seam_energy: vec![0.0; seams.len()],
+            seams,
+            seam_colors,
+            seam_pull: SeamPull::default(),
             masses,
             vertex_area,
             bending_calibration: kappa,
@@ -147,10 +189,17 @@ impl ForceModel {
     }
 
     /// Stiffens the hinges along a clamp (see [`bending::clamp_factor`]).
-    pub fn clamp_hinges(&mut self, mesh: &ClothMesh, pinned: &[bool]) {
+    pub fn clamp_hinges(&mut self, pinned: &[bool]) {
         for h in &mut self.hinges {
-            h.stiffness *= bending::clamp_factor(mesh.uv(), h.v.map(|i| i as usize), pinned);
+            h.stiffness *= bending::clamp_factor(h.v.map(|i| i as usize), h.wing_areas, pinned);
         }
+    }
+    /// Sets how hard the seams pull (zero: not at all).
+    pub fn set_seam_pull(&mut self, pull: SeamPull) {
+        self.seam_pull = pull;
+    }
+    pub fn seam_pull(&self) -> SeamPull {
+        self.seam_pull
     }
     pub fn masses(&self) -> &[f64] {
         &self.masses
@@ -257,13 +306,65 @@ impl ForceModel {
             parallel,
             hinge_kernel,
         );
+        let pull = self.seam_pull;
+        if pull.stiffness > 0.0 {
+            let seam_kernel = |e: &SeamElement, energy: &mut f64| {
+                let mut local = Local::<2>::default();
+                add_seam_pull(pull, [x[e.v[0] as usize], x[e.v[1] as usize]], need_k, &mut local);
+                *energy = local.energy;
+                // SAFETY: as above.
+                unsafe {
+                    scatter(
+                        &local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale,
+                    )
+                };
+            };
+            run_colored(
+                &self.seams,
+                &self.seam_colors,
+                &mut self.seam_energy,
+                parallel,
+                seam_kernel,
+            );
+        } else {
+            self.seam_energy.iter_mut().for_each(|e| *e = 0.0);
+        }
 
         let gravity_energy: f64 = x
             .iter()
             .zip(masses)
             .map(|(xi, &m)| particle::gravity_energy(m, gravity, xi))
             .sum();
-        self.tri_energy.iter().sum::<f64>() + self.hinge_energy.iter().sum::<f64>() + gravity_energy
+        self.tri_energy.iter().sum::<f64>()
+            + self.hinge_energy.iter().sum::<f64>()
+            + self.seam_energy.iter().sum::<f64>()
+            + gravity_energy
+    }
+}
+
+/// A seam pair's pull: `k d^2 / 2` up to the reach `r`, then `k r (d - r / 2)`, so the
+/// force is `k d` and then a constant `k r` along the gap. The Hessian is `k` times the
+/// identity inside the reach and `k r / d (I - n n^T)` beyond, both positive
+/// semi-definite.
+pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, out: &mut Local<2>) {
+    let SeamPull { stiffness: k, reach: r } = pull;
+    let gap = x[0] - x[1];
+    let d = gap.norm();
+    let (energy, grad, hess) = if d <= r {
+        (0.5 * k * d * d, k * gap, Mat3::identity() * k)
+    } else {
+        let n = gap / d;
+        let hess = (Mat3::identity() - n * n.transpose()) * (k * r / d);
+        (k * r * (d - 0.5 * r), n * (k * r), hess)
+    };
+    out.energy += energy;
+    out.grad[0] += grad;
+    out.grad[1] -= grad;
+    if with_hessian {
+        out.hess[0][0] += hess;
+        out.hess[1][1] += hess;
+        out.hess[0][1] -= hess;
+        out.hess[1][0] -= hess;
     }
 }
 
@@ -380,7 +481,12 @@ mod tests {
             tension_ref: 40.0,
             exponent: 2.0,
         };
-        let (model, matrix) = ForceModel::new(&mesh, fabric);
+        // One seam pair within the pull's reach and two beyond it, sharing a particle.
+        let (mut model, matrix) = ForceModel::new(&mesh, fabric, &SEAMS, None);
+        model.set_seam_pull(SeamPull {
+            stiffness: 50.0,
+            reach: 0.05,
+        });
         let mut rng = StdRng::seed_from_u64(7);
         let x = mesh
             .positions()
@@ -391,6 +497,46 @@ mod tests {
             .map(|_| Vec3::from_fn(|_, _| rng.random_range(-0.5..0.5)))
             .collect();
         (mesh, model, matrix, x, v)
+    }
+
+    const SEAMS: [[usize; 2]; 3] = [[0, 1], [0, 19], [3, 12]];
+
+    #[test]
+    fn seam_pull_derivatives_match_finite_differences() {
+        let pull = SeamPull {
+            stiffness: 30.0,
+            reach: 0.04,
+        };
+        // Gaps inside and beyond the reach.
+        for gap in [Vec3::new(0.01, -0.02, 0.005), Vec3::new(0.05, 0.03, -0.02)] {
+            let x = [Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.1, 0.2, 0.3) - gap];
+            let eval = |x: [Vec3; 2]| {
+                let mut l = Local::<2>::default();
+                add_seam_pull(pull, x, true, &mut l);
+                l
+            };
+            let l = eval(x);
+            let h = 1e-6;
+            for i in 0..2 {
+                for d in 0..3 {
+                    let (mut xp, mut xm) = (x, x);
+                    xp[i][d] += h;
+                    xm[i][d] -= h;
+                    let (lp, lm) = (eval(xp), eval(xm));
+                    let fd = (lp.energy - lm.energy) / (2.0 * h);
+                    assert!((fd - l.grad[i][d]).abs() < 1e-7, "grad {i}{d}: {fd} vs {}", l.grad[i][d]);
+                    for j in 0..2 {
+                        let fd_col = (lp.grad[j] - lm.grad[j]) / (2.0 * h);
+                        let col = l.hess[j][i].column(d).clone_owned();
+                        assert!((fd_col - col).norm() < 1e-6, "hess {j}{i} col {d}: {fd_col} vs {col}");
+                    }
+                }
+            }
+        }
+        // The pull beyond the reach is the constant k r.
+        let mut l = Local::<2>::default();
+        add_seam_pull(pull, [Vec3::new(1.0, 0.0, 0.0), Vec3::zeros()], false, &mut l);
+        assert!((l.grad[0].norm() - 30.0 * 0.04).abs() < 1e-12);
     }
 
     #[test]
@@ -454,9 +600,8 @@ mod tests {
                 }
             }
         };
-        let uv = mesh.uv();
-        for t in mesh.triangles() {
-            let rest = TriangleRest::new(t.map(|i| uv[i])).unwrap();
+        for (k, t) in mesh.triangles().iter().enumerate() {
+            let rest = TriangleRest::new(mesh.corner_uv(k)).unwrap();
             let mut l = Local::<3>::default();
             add_stretch(
                 &rest,
@@ -497,6 +642,11 @@ mod tests {
                 "hinge block not PSD"
             );
             add(&ids, &h);
+        }
+        for pair in SEAMS {
+            let mut l = Local::<2>::default();
+            add_seam_pull(model.seam_pull(), pair.map(|i| x[i]), true, &mut l);
+            add(&pair, &l.hessian_dense());
         }
         let assembled = matrix.to_dense();
         let scale = dense.amax();

@@ -10,6 +10,7 @@ mod simulation;
 mod stats;
 
 pub use crate::linalg::{Constraint, ConstraintKind, PcgSettings};
+pub use assembly::SeamPull;
 pub use pins::{Pin, PinMotion};
 pub use rest::{RestCriteria, RestOutcome, StopReason};
 pub use settings::{Integrator, SolverSettings};

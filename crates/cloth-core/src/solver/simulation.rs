@@ -1,6 +1,6 @@
 //! The Simulation: owns the state and all scratch, and steps.
 
-use super::assembly::ForceModel;
+use super::assembly::{ForceModel, SeamPull};
 use super::{Integrator, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason};
 use crate::contact::{Collider, Contacts};
 use crate::error::{DivergenceReason, ParamError, SimError};
@@ -20,6 +20,8 @@ pub struct SimulationBuilder {
     pins: Vec<Pin>,
     velocities: Option<Vec<Vec3>>,
     collider: Option<Arc<dyn Collider>>,
+    seams: Vec<[usize; 2]>,
+    bending_calibration: Option<[f64; 2]>,
 }
 
 impl SimulationBuilder {
@@ -31,6 +33,8 @@ impl SimulationBuilder {
             pins: Vec::new(),
             velocities: None,
             collider: None,
+            seams: Vec::new(),
+            bending_calibration: None,
         }
     }
     pub fn settings(mut self, settings: SolverSettings) -> Self {
@@ -56,6 +60,19 @@ impl SimulationBuilder {
     /// The rigid bodies the cloth collides with.
     pub fn collider(mut self, collider: Arc<dyn Collider>) -> Self {
         self.collider = Some(collider);
+        self
+    }
+    /// Particle pairs that seam forces pull together while a garment is sewn; how hard
+    /// is set on the simulation ([`Simulation::set_seam_pull`]), zero at first.
+    pub fn seams(mut self, pairs: Vec<[usize; 2]>) -> Self {
+        self.seams = pairs;
+        self
+    }
+    /// Uses these bending calibration factors instead of computing them (see
+    /// [`crate::energy::bending::calibration`]): a garment keeps its panels' factors
+    /// when its seams are welded.
+    pub fn bending_calibration(mut self, kappa: [f64; 2]) -> Self {
+        self.bending_calibration = Some(kappa);
         self
     }
     /// Initial velocities (zero by default).
@@ -119,8 +136,23 @@ impl SimulationBuilder {
                 "a positive thickness in m",
             )?;
         }
-        let (mut model, matrix) = ForceModel::new(&self.mesh, self.fabric);
-        model.clamp_hinges(&self.mesh, &pinned);
+        if let Some(&[a, b]) = self.seams.iter().find(|&&[a, b]| a >= n || b >= n || a == b) {
+            return Err(ParamError::OutOfRange {
+                name: "seams",
+                value: a.max(b) as f64,
+                expected: "pairs of two different particles of the mesh",
+            });
+        }
+        if let Some(kappa) = self.bending_calibration {
+            ParamError::check(
+                kappa.iter().all(|k| k.is_finite() && *k > 0.0),
+                "bending_calibration",
+                kappa[0].min(kappa[1]),
+                "positive finite factors",
+            )?;
+        }
+        let (mut model, matrix) = ForceModel::new(&self.mesh, self.fabric, &self.seams, self.bending_calibration);
+        model.clamp_hinges(&pinned);
         let contacts = self.collider.map(|collider| {
             let fabric = model.fabric();
             let stiffness = 10.0 * fabric.membrane_stiffness();
@@ -232,6 +264,26 @@ impl Simulation {
     /// (see [`crate::energy::bending::calibration`]).
     pub fn bending_calibration(&self) -> [f64; 2] {
         self.model.bending_calibration()
+    }
+    /// How hard the seams given to the builder pull (zero: not at all).
+    pub fn set_seam_pull(&mut self, pull: SeamPull) -> Result<(), ParamError> {
+        ParamError::check(
+            pull.stiffness.is_finite() && pull.stiffness >= 0.0,
+            "seam stiffness",
+            pull.stiffness,
+            "a finite stiffness >= 0 N/m",
+        )?;
+        ParamError::check(
+            pull.reach.is_finite() && pull.reach > 0.0,
+            "seam reach",
+            pull.reach,
+            "a positive distance in m",
+        )?;
+        self.model.set_seam_pull(pull);
+        Ok(())
+    }
+    pub fn seam_pull(&self) -> SeamPull {
+        self.model.seam_pull()
     }
     /// Changes the integrator or its settings between steps.
     pub fn set_settings(&mut self, settings: SolverSettings) -> Result<(), ParamError> {

@@ -1,0 +1,196 @@
+//! A pattern made into cloth: its panels meshed, placed around the body, and the seam
+//! vertices paired one to one, ready to be sewn.
+
+mod error;
+mod weld;
+
+pub use error::GarmentError;
+pub use weld::Welded;
+
+use crate::meshing::mesh_region;
+use crate::pattern::{Edge, Pattern, SeamOrientation};
+use cloth_core::{ClothMesh, Vec3};
+use nalgebra::Rotation2;
+
+/// The default target edge length, m: about 6,000 particles for a dress.
+pub const DEFAULT_EDGE_LENGTH: f64 = 0.015;
+
+/// Turns a [`Pattern`] into a [`Garment`].
+#[derive(Debug, Clone)]
+pub struct GarmentBuilder {
+    pattern: Pattern,
+    edge_length: f64,
+    file: String,
+}
+
+/// One seam of the garment: its vertex pairs in order along side a.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeamPairs {
+    /// "panel 'front', edge 'side' (1) to panel 'back', edge 'side' (3)".
+    pub name: String,
+    pub pairs: Vec<[usize; 2]>,
+}
+
+/// The pattern's panels as one unsewn mesh (each panel its own piece, placed in 3D, with
+/// its material coordinates turned to its grain line), and the seams' vertex pairs.
+#[derive(Debug, Clone)]
+pub struct Garment {
+    pub mesh: ClothMesh,
+    pub seams: Vec<SeamPairs>,
+    /// The panel of each triangle.
+    pub triangle_panel: Vec<usize>,
+    pub panel_names: Vec<String>,
+    /// The fabric preset named by each panel, if any.
+    pub panel_fabrics: Vec<Option<String>>,
+}
+
+impl GarmentBuilder {
+    pub fn new(pattern: Pattern) -> Self {
+        Self {
+            pattern,
+            edge_length: DEFAULT_EDGE_LENGTH,
+            file: "pattern".into(),
+        }
+    }
+    /// Target edge length of the mesh, m.
+    pub fn edge_length(mut self, h: f64) -> Self {
+        self.edge_length = h;
+        self
+    }
+    /// The pattern's source, named in errors.
+    pub fn file(mut self, file: impl Into<String>) -> Self {
+        self.file = file.into();
+        self
+    }
+
+    /// Resamples every edge (both sides of a seam with the same count), meshes each panel,
+    /// places it and pairs the seam vertices.
+    pub fn build(self) -> Result<Garment, GarmentError> {
+        let Self {
+            pattern,
+            edge_length: h,
+            file,
+        } = self;
+        if !(h.is_finite() && h > 0.0) {
+            return Err(GarmentError::Parameter {
+                name: "edge_length",
+                value: h,
+                expected: "a positive length in m",
+            });
+        }
+        pattern.validate(&file)?;
+        // Pieces per outline edge: a seam's sides share the larger count.
+        let pieces_of = |e: &Edge| ((e.length() / h).round() as usize).max(1);
+        let mut pieces: Vec<Vec<usize>> = pattern
+            .panels
+            .iter()
+            .map(|p| p.outline.iter().map(pieces_of).collect())
+            .collect();
+        for seam in &pattern.seams {
+            let n = pieces[seam.a.panel][seam.a.edge].max(pieces[seam.b.panel][seam.b.edge]);
+            pieces[seam.a.panel][seam.a.edge] = n;
+            pieces[seam.b.panel][seam.b.edge] = n;
+        }
+
+        let (mut positions, mut uv, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+        let mut triangle_panel = Vec::new();
+        // Mesh vertices along each outline edge, start to end.
+        let mut edge_vertices: Vec<Vec<Vec<usize>>> = Vec::with_capacity(pattern.panels.len());
+        for (p, panel) in pattern.panels.iter().enumerate() {
+            let mut outline = Vec::new();
+            let mut starts = Vec::with_capacity(panel.outline.len());
+            for (e, edge) in panel.outline.iter().enumerate() {
+                starts.push(outline.len());
+                let points = edge.resample(pieces[p][e]);
+                outline.extend_from_slice(&points[..points.len() - 1]);
+            }
+            let mut loops = vec![outline];
+            for hole in &panel.holes {
+                let mut l = Vec::new();
+                for edge in hole {
+                    let points = edge.resample(pieces_of(edge));
+                    l.extend_from_slice(&points[..points.len() - 1]);
+                }
+                loops.push(l);
+            }
+            let region = mesh_region(&loops, &[], h).map_err(|e| GarmentError::Meshing {
+                file: file.clone(),
+                panel: panel.name.clone(),
+                source: e,
+            })?;
+            let offset = positions.len();
+            let turn = Rotation2::new(-panel.grain.y.atan2(panel.grain.x));
+            for q in &region.uv {
+                positions.push(panel.placement.place(*q));
+                uv.push(turn * q);
+            }
+            triangles.extend(region.triangles.iter().map(|t| t.map(|i| i + offset)));
+            triangle_panel.extend(std::iter::repeat_n(p, region.triangles.len()));
+            let ring = &region.loop_vertices[0];
+            edge_vertices.push(
+                (0..panel.outline.len())
+                    .map(|e| {
+                        (0..=pieces[p][e])
+                            .map(|k| offset + ring[(starts[e] + k) % ring.len()])
+                            .collect()
+                    })
+                    .collect(),
+            );
+        }
+        let mesh = ClothMesh::new(positions, uv, triangles).map_err(|source| GarmentError::Mesh {
+            what: "the meshed panels",
+            source,
+        })?;
+
+        let mut seams = Vec::with_capacity(pattern.seams.len());
+        for seam in &pattern.seams {
+            let a = &edge_vertices[seam.a.panel][seam.a.edge];
+            let b = &edge_vertices[seam.b.panel][seam.b.edge];
+            let x = mesh.positions();
+            let spread = |b: &mut dyn Iterator<Item = &usize>| -> f64 {
+                a.iter().zip(b).map(|(&i, &j)| (x[i] - x[j]).norm()).sum()
+            };
+            let same = match seam.orientation {
+                SeamOrientation::Same => true,
+                SeamOrientation::Opposite => false,
+                SeamOrientation::Auto => spread(&mut b.iter()) < spread(&mut b.iter().rev()),
+            };
+            let pairs = (0..a.len())
+                .map(|k| [a[k], if same { b[k] } else { b[b.len() - 1 - k] }])
+                // A dart's legs meet at its tip, which pairs with itself.
+                .filter(|[i, j]| i != j)
+                .collect();
+            seams.push(SeamPairs {
+                name: format!("{} to {}", pattern.describe(&seam.a), pattern.describe(&seam.b)),
+                pairs,
+            });
+        }
+        Ok(Garment {
+            mesh,
+            seams,
+            triangle_panel,
+            panel_names: pattern.panels.iter().map(|p| p.name.clone()).collect(),
+            panel_fabrics: pattern.panels.iter().map(|p| p.fabric.clone()).collect(),
+        })
+    }
+}
+
+impl Garment {
+    /// Every seam's vertex pairs in one list.
+    pub fn seam_pairs(&self) -> Vec<[usize; 2]> {
+        self.seams.iter().flat_map(|s| s.pairs.iter().copied()).collect()
+    }
+
+    /// The widest gap of each seam at `positions`, m.
+    pub fn seam_gaps(&self, positions: &[Vec3]) -> Vec<f64> {
+        self.seams
+            .iter()
+            .map(|s| {
+                s.pairs
+                    .iter()
+                    .map(|&[a, b]| (positions[a] - positions[b]).norm())
+                    .fold(0.0, f64::max)
+            })
+            .collect()
+    }
+}

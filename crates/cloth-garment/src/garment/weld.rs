@@ -1,0 +1,69 @@
+//! Welding sewn seams: each group of paired vertices becomes one particle.
+
+use super::{Garment, GarmentError};
+use cloth_core::{ClothMesh, Vec3};
+
+/// The garment's mesh after welding, and where each unsewn vertex went.
+#[derive(Debug, Clone)]
+pub struct Welded {
+    pub mesh: ClothMesh,
+    /// The welded particle of each vertex of the unsewn mesh.
+    pub particle_of: Vec<usize>,
+}
+
+impl Garment {
+    /// Welds every seam pair at `positions` (each particle at the mean of the vertices it
+    /// joins). Triangles keep their panels' material coordinates per corner, so the rest
+    /// state is unchanged; edges and hinges are rebuilt across the seams.
+    pub fn weld(&self, positions: &[Vec3]) -> Result<Welded, GarmentError> {
+        let n = self.mesh.vertex_count();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn root(parent: &mut [usize], mut i: usize) -> usize {
+            while parent[i] != i {
+                parent[i] = parent[parent[i]];
+                i = parent[i];
+            }
+            i
+        }
+        for [a, b] in self.seam_pairs() {
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            if ra != rb {
+                parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+        let mut particle_of = vec![usize::MAX; n];
+        let mut sum: Vec<(Vec3, f64)> = Vec::new();
+        for i in 0..n {
+            let r = root(&mut parent, i);
+            if particle_of[r] == usize::MAX {
+                particle_of[r] = sum.len();
+                sum.push((Vec3::zeros(), 0.0));
+            }
+            particle_of[i] = particle_of[r];
+            let s = &mut sum[particle_of[i]];
+            s.0 += positions[i];
+            s.1 += 1.0;
+        }
+        let welded_positions = sum.iter().map(|(p, count)| p / *count).collect();
+        let triangles: Vec<[usize; 3]> = self
+            .mesh
+            .triangles()
+            .iter()
+            .map(|t| t.map(|i| particle_of[i]))
+            .collect();
+        if let Some(t) = triangles.iter().position(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+            return Err(GarmentError::Collapse {
+                triangle: t,
+                panel: self.panel_names[self.triangle_panel[t]].clone(),
+            });
+        }
+        let corner_uv = (0..triangles.len()).map(|t| self.mesh.corner_uv(t)).collect();
+        let mesh = ClothMesh::with_corner_uv(welded_positions, triangles, corner_uv).map_err(|source| {
+            GarmentError::Mesh {
+                what: "the welded panels",
+                source,
+            }
+        })?;
+        Ok(Welded { mesh, particle_of })
+    }
+}

@@ -1,0 +1,134 @@
+//! Sewing patterns: flat panels with curved outlines, a grain line, a fabric and a
+//! placement around the body, and the seams that join their edges.
+//!
+//! Everything here is in metres and radians; the file formats (our TOML, GarmentCode's
+//! JSON) convert on reading.
+
+mod curve;
+mod error;
+mod placement;
+mod toml_format;
+mod validate;
+
+pub use curve::Curve;
+pub use error::PatternError;
+pub use placement::{Placement, Wrap};
+
+use nalgebra::Vector2;
+
+pub type Point2 = Vector2<f64>;
+
+/// A garment's pattern: its panels and the seams between their edges.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pattern {
+    pub name: String,
+    pub panels: Vec<Panel>,
+    pub seams: Vec<Seam>,
+}
+
+/// One flat piece of fabric.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Panel {
+    pub name: String,
+    /// The outline: a closed loop of edges, each starting where the previous one ends.
+    pub outline: Vec<Edge>,
+    /// Holes cut out of the panel, each a closed loop like the outline.
+    pub holes: Vec<Vec<Edge>>,
+    /// The warp direction in the panel's 2D coordinates (need not be unit).
+    pub grain: Point2,
+    /// A fabric preset name; `None` uses the garment's fabric.
+    pub fabric: Option<String>,
+    pub placement: Placement,
+}
+
+/// One edge of a panel's outline or of a hole, from `start` to `end`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Edge {
+    /// Name by which seams refer to the edge (its index works too).
+    pub name: Option<String>,
+    pub start: Point2,
+    pub end: Point2,
+    pub curve: Curve,
+}
+
+/// Which of a panel's edges a seam side is: an outline edge by index.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SeamSide {
+    pub panel: usize,
+    pub edge: usize,
+}
+
+/// How the two sides of a seam run against each other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SeamOrientation {
+    /// Side b's start meets side a's end: two panels facing the same way around a
+    /// garment traverse their shared edge in opposite directions.
+    #[default]
+    Opposite,
+    /// Side b's start meets side a's start.
+    Same,
+    /// Whichever of the two pairs the placed edges closer (a tie goes to `Opposite`).
+    Auto,
+}
+
+/// Two edges sewn together.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Seam {
+    pub a: SeamSide,
+    pub b: SeamSide,
+    pub orientation: SeamOrientation,
+}
+
+impl Pattern {
+    /// The panel named `name`.
+    pub fn panel_index(&self, name: &str) -> Option<usize> {
+        self.panels.iter().position(|p| p.name == name)
+    }
+
+    /// "panel 'front', edge 'side' (2)": how errors and reports name an edge.
+    pub fn describe(&self, side: &SeamSide) -> String {
+        let panel = &self.panels[side.panel];
+        match &panel.outline[side.edge].name {
+            Some(name) => format!("panel '{}', edge '{}' ({})", panel.name, name, side.edge),
+            None => format!("panel '{}', edge {}", panel.name, side.edge),
+        }
+    }
+}
+
+impl Panel {
+    /// The outline edge with this name, or with this index written as a number.
+    pub fn edge_index(&self, name: &str) -> Option<usize> {
+        self.outline
+            .iter()
+            .position(|e| e.name.as_deref() == Some(name))
+            .or_else(|| name.parse::<usize>().ok().filter(|&i| i < self.outline.len()))
+    }
+}
+
+impl Edge {
+    /// A straight edge.
+    pub fn line(start: Point2, end: Point2) -> Self {
+        Self {
+            name: None,
+            start,
+            end,
+            curve: Curve::Line,
+        }
+    }
+    pub fn named(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+    /// The point at parameter `t` in [0, 1].
+    pub fn point(&self, t: f64) -> Point2 {
+        self.curve.point(self.start, self.end, t)
+    }
+    /// Arc length.
+    pub fn length(&self) -> f64 {
+        self.curve.length(self.start, self.end)
+    }
+    /// `pieces + 1` points at equal arc-length spacing, both ends included.
+    pub fn resample(&self, pieces: usize) -> Vec<Point2> {
+        self.curve.resample(self.start, self.end, pieces)
+    }
+}

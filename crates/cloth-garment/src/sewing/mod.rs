@@ -1,0 +1,182 @@
+//! The source's second and third stages: sew the placed panels with gravity off, weld
+//! the seams, then drape with gravity on until at rest.
+
+mod settings;
+
+pub use settings::SewingSettings;
+
+use crate::garment::{Garment, GarmentError, Welded};
+use cloth_core::{Collider, Fabric, Integrator, RestCriteria, RestOutcome, SeamPull, Simulation, SimulationBuilder};
+use cloth_core::{SolverSettings, StepStats, Vec3};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// What the sewing stage did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SewingReport {
+    pub steps: u64,
+    pub seconds: f64,
+    pub cg_iterations: usize,
+    /// Widest seam gap when the seams were welded, m.
+    pub max_gap: f64,
+    /// The pull per seam pair at full strength, N.
+    pub pull: f64,
+}
+
+/// The garment sewn: its welded mesh at the positions where the seams closed.
+#[derive(Debug, Clone)]
+pub struct Sewn {
+    pub welded: Welded,
+    pub report: SewingReport,
+    /// Bending calibration of the panels, kept for the drape.
+    pub bending_calibration: [f64; 2],
+}
+
+/// Sews `garment` of `fabric` around the bodies of `collider`: gravity off, the implicit
+/// integrator, a seam pull ramped up over [`SewingSettings::ramp_time`] to a force that
+/// stretches the cloth by at most [`SewingSettings::pull_strain`], and extra air drag so
+/// panels glide into place. Stops when every seam gap is under the tolerance, then welds.
+/// `observe` sees every step (with the widest gap, m).
+pub fn sew(
+    garment: &Garment,
+    fabric: &Fabric,
+    collider: Arc<dyn Collider>,
+    settings: &SewingSettings,
+    mut observe: impl FnMut(&Simulation, &StepStats, f64),
+) -> Result<Sewn, GarmentError> {
+    settings.validate()?;
+    let start = Instant::now();
+    let sewing_fabric = fabric.clone().with_drag(fabric.drag.max(settings.drag));
+    let solver = SolverSettings {
+        integrator: Integrator::ImplicitEuler,
+        time_step: settings.time_step,
+        gravity: Vec3::zeros(),
+        ..SolverSettings::default()
+    };
+    let pairs = garment.seam_pairs();
+    let mut sim = SimulationBuilder::new(garment.mesh.clone(), sewing_fabric)
+        .settings(solver)
+        .seams(pairs.clone())
+        .collider(collider)
+        .build()?;
+    let pull = settings.pull_strain * fabric.membrane_stiffness() * seam_spacing(garment);
+    let widest = |x: &[Vec3]| {
+        garment
+            .seam_gaps(x)
+            .into_iter()
+            .enumerate()
+            .fold((0, 0.0), |best, (s, g)| if g > best.1 { (s, g) } else { best })
+    };
+    let mut cg = 0;
+    let mut gap = widest(sim.positions()).1;
+    let mut steps = 0;
+    while gap >= settings.gap_tolerance {
+        if steps == settings.max_steps {
+            let (seam, gap) = widest(sim.positions());
+            return Err(GarmentError::NotSewn {
+                steps,
+                seam: garment.seams[seam].name.clone(),
+                gap_mm: 1e3 * gap,
+                tolerance_mm: 1e3 * settings.gap_tolerance,
+            });
+        }
+        let ramp = (sim.time() / settings.ramp_time).min(1.0);
+        let force = pull * ramp.max(1e-3);
+        sim.set_seam_pull(SeamPull {
+            stiffness: force / settings.reach,
+            reach: settings.reach,
+        })?;
+        let stats = sim.step().map_err(|source| GarmentError::Sim {
+            stage: "sewing",
+            source,
+        })?;
+        steps += 1;
+        cg += stats.cg_iterations;
+        gap = widest(sim.positions()).1;
+        observe(&sim, &stats, gap);
+    }
+    let welded = garment.weld(sim.positions())?;
+    Ok(Sewn {
+        welded,
+        report: SewingReport {
+            steps,
+            seconds: start.elapsed().as_secs_f64(),
+            cg_iterations: cg,
+            max_gap: gap,
+            pull,
+        },
+        bending_calibration: sim.bending_calibration(),
+    })
+}
+
+/// The draped garment and how its run ended.
+#[derive(Debug)]
+pub struct Draped {
+    pub simulation: Simulation,
+    pub outcome: RestOutcome,
+    pub seconds: f64,
+    pub cg_iterations: usize,
+}
+
+/// A simulation of the sewn garment on the bodies with the solver settings given
+/// (gravity on, normally), ready to drape.
+pub fn drape_simulation(
+    sewn: &Sewn,
+    fabric: &Fabric,
+    collider: Arc<dyn Collider>,
+    solver: SolverSettings,
+) -> Result<Simulation, GarmentError> {
+    Ok(SimulationBuilder::new(sewn.welded.mesh.clone(), fabric.clone())
+        .settings(solver)
+        .bending_calibration(sewn.bending_calibration)
+        .collider(collider)
+        .build()?)
+}
+
+/// Drapes the sewn garment until at rest (the source's stopping mechanism) or the step
+/// limit. `observe` sees every step.
+pub fn drape(
+    sewn: &Sewn,
+    fabric: &Fabric,
+    collider: Arc<dyn Collider>,
+    solver: SolverSettings,
+    rest: &RestCriteria,
+    mut observe: impl FnMut(&Simulation, &StepStats),
+) -> Result<Draped, GarmentError> {
+    let start = Instant::now();
+    let mut simulation = drape_simulation(sewn, fabric, collider, solver)?;
+    let mut cg = 0;
+    let outcome = simulation
+        .run_to_rest_with(rest, |sim, stats| {
+            cg += stats.cg_iterations;
+            observe(sim, stats)
+        })
+        .map_err(|source| GarmentError::Sim {
+            stage: "draping",
+            source,
+        })?;
+    Ok(Draped {
+        simulation,
+        outcome,
+        seconds: start.elapsed().as_secs_f64(),
+        cg_iterations: cg,
+    })
+}
+
+/// Mean material spacing of consecutive seam vertices: the length of cloth each pair
+/// pulls on.
+fn seam_spacing(garment: &Garment) -> f64 {
+    let uv = garment.mesh.uv();
+    let (mut sum, mut count) = (0.0, 0);
+    for seam in &garment.seams {
+        for w in seam.pairs.windows(2) {
+            sum += (uv[w[1][0]] - uv[w[0][0]]).norm();
+            count += 1;
+        }
+    }
+    if count == 0 {
+        0.0
+    } else {
+        sum / count as f64
+    }
+}

@@ -1,0 +1,60 @@
+//! How the sewing stage runs.
+
+use cloth_core::ParamError;
+use serde::{Deserialize, Serialize};
+
+/// Settings of the sewing stage.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SewingSettings {
+    /// Time step, s.
+    pub time_step: f64,
+    /// The seams are welded when every pair is closer than this, m.
+    pub gap_tolerance: f64,
+    /// The sewing fails after this many steps.
+    pub max_steps: u64,
+    /// The full pull per seam pair is the fabric's tension at this strain times the
+    /// pair's share of seam: the seams can stretch the cloth this much, and no more.
+    pub pull_strain: f64,
+    /// The pull grows linearly to full strength over this time, s.
+    pub ramp_time: f64,
+    /// Within this gap (m) the pull falls linearly to zero, so pairs settle instead of
+    /// chattering; beyond it the pull is constant.
+    pub reach: f64,
+    /// Air drag while sewing, kg/(m^2 s): panels glide into place instead of flying.
+    pub drag: f64,
+}
+
+impl Default for SewingSettings {
+    fn default() -> Self {
+        Self {
+            time_step: 1.0 / 100.0,
+            gap_tolerance: 1e-3,
+            max_steps: 3000,
+            pull_strain: 0.01,
+            ramp_time: 0.2,
+            reach: 0.004,
+            drag: 5.0,
+        }
+    }
+}
+
+impl SewingSettings {
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let positive = |value: f64, name: &'static str, expected: &'static str| {
+            ParamError::check(value.is_finite() && value > 0.0, name, value, expected)
+        };
+        positive(self.time_step, "sewing.time_step", "a positive time step in s")?;
+        positive(self.gap_tolerance, "sewing.gap_tolerance", "a positive distance in m")?;
+        positive(self.pull_strain, "sewing.pull_strain", "a positive strain")?;
+        positive(self.ramp_time, "sewing.ramp_time", "a positive time in s")?;
+        positive(self.reach, "sewing.reach", "a positive distance in m")?;
+        ParamError::check(
+            self.drag.is_finite() && self.drag >= 0.0,
+            "sewing.drag",
+            self.drag,
+            "a drag coefficient >= 0 kg/(m^2 s)",
+        )?;
+        ParamError::check(self.max_steps > 0, "sewing.max_steps", 0.0, "at least one step")
+    }
+}
