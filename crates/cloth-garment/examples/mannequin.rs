@@ -13,7 +13,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/bodies"));
     std::fs::create_dir_all(dir)?;
     let plain = Measurements::default();
-    for (file, m) in [("mannequin.obj", plain), ("mannequin_arms.obj", plain.with_arms())] {
+    for (file, m) in [
+        ("mannequin.obj", plain),
+        ("mannequin_arms.obj", plain.with_arms()),
+    ] {
         let mannequin = Mannequin::new(&m)?;
         let path = dir.join(file);
         mannequin.write_obj(&path)?;

@@ -344,8 +344,10 @@ impl ForceModel {
 
 /// A seam pair's pull: `k d^2 / 2` up to the reach `r`, then `k r (d - r / 2)`, so the
 /// force is `k d` and then a constant `k r` along the gap. The Hessian is `k` times the
-/// identity inside the reach and `k r / d (I - n n^T)` beyond, both positive
-/// semi-definite.
+/// identity inside the reach; beyond it, the secant `k r / d` times the identity. The
+/// exact one there, `k r / d (I - n n^T)`, has no stiffness along the gap: the implicit
+/// step would then meet a constant force as explicitly as forward Euler and carry the
+/// pair far past closing (by about `k r h^2 / m`), where the secant sees it coming.
 pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, out: &mut Local<2>) {
     let SeamPull { stiffness: k, reach: r } = pull;
     let gap = x[0] - x[1];
@@ -353,9 +355,7 @@ pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, ou
     let (energy, grad, hess) = if d <= r {
         (0.5 * k * d * d, k * gap, Mat3::identity() * k)
     } else {
-        let n = gap / d;
-        let hess = (Mat3::identity() - n * n.transpose()) * (k * r / d);
-        (k * r * (d - 0.5 * r), n * (k * r), hess)
+        (k * r * (d - 0.5 * r), gap * (k * r / d), Mat3::identity() * (k * r / d))
     };
     out.energy += energy;
     out.grad[0] += grad;
@@ -508,7 +508,7 @@ mod tests {
             reach: 0.04,
         };
         // Gaps inside and beyond the reach.
-        for gap in [Vec3::new(0.01, -0.02, 0.005), Vec3::new(0.05, 0.03, -0.02)] {
+        for (gap, exact) in [(Vec3::new(0.01, -0.02, 0.005), true), (Vec3::new(0.05, 0.03, -0.02), false)] {
             let x = [Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.1, 0.2, 0.3) - gap];
             let eval = |x: [Vec3; 2]| {
                 let mut l = Local::<2>::default();
@@ -528,11 +528,23 @@ mod tests {
                     for j in 0..2 {
                         let fd_col = (lp.grad[j] - lm.grad[j]) / (2.0 * h);
                         let col = l.hess[j][i].column(d).clone_owned();
-                        assert!((fd_col - col).norm() < 1e-6, "hess {j}{i} col {d}: {fd_col} vs {col}");
+                        if exact {
+                            assert!((fd_col - col).norm() < 1e-6, "hess {j}{i} col {d}: {fd_col} vs {col}");
+                        } else {
+                            // Beyond the reach: the exact Hessian across the gap, the secant along it.
+                            let n = gap.normalize();
+                            let across = |c: Vec3| c - n * n.dot(&c);
+                            assert!((across(fd_col) - across(col)).norm() < 1e-6, "hess {j}{i} col {d}");
+                        }
                     }
                 }
             }
         }
+        // The secant along the gap: H (x0 - x1) is the gradient.
+        let x = [Vec3::new(0.05, 0.03, -0.02), Vec3::zeros()];
+        let mut l = Local::<2>::default();
+        add_seam_pull(pull, x, true, &mut l);
+        assert!((l.hess[0][0] * x[0] - l.grad[0]).norm() < 1e-12);
         // The pull beyond the reach is the constant k r.
         let mut l = Local::<2>::default();
         add_seam_pull(pull, [Vec3::new(1.0, 0.0, 0.0), Vec3::zeros()], false, &mut l);

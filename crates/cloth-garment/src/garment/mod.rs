@@ -2,9 +2,11 @@
 //! vertices paired one to one, ready to be sewn.
 
 mod error;
+mod placement_check;
 mod weld;
 
 pub use error::GarmentError;
+pub use placement_check::PlacementWarning;
 pub use weld::Welded;
 
 use crate::meshing::mesh_region;

@@ -45,15 +45,25 @@ pub(super) fn pattern(
         panels.push(p);
         reversed.push(flips);
     }
-    let index: HashMap<&str, usize> = records.iter().enumerate().map(|(k, (n, _))| (n.as_str(), k)).collect();
+    let index: HashMap<&str, usize> = records
+        .iter()
+        .enumerate()
+        .map(|(k, (n, _))| (n.as_str(), k))
+        .collect();
     let seams = spec
         .pattern
         .stitches
         .iter()
         .enumerate()
         .map(|(s, stitch)| {
-            seam(stitch, &index, &records, &reversed, properties.normalized_edge_loops)
-                .map_err(|reason| PatternError::seam(file, s, reason))
+            seam(
+                stitch,
+                &index,
+                &records,
+                &reversed,
+                properties.normalized_edge_loops,
+            )
+            .map_err(|reason| PatternError::seam(file, s, reason))
         })
         .collect::<Result<Vec<_>, _>>()?;
     let pattern = Pattern { name, panels, seams };
@@ -83,7 +93,11 @@ fn ordered(
             None if out.iter().any(|(n, _)| *n == name) => {
                 return Err(fail(format!("panel_order lists '{name}' twice")))
             }
-            None => return Err(fail(format!("panel_order names '{name}', which is not among the panels"))),
+            None => {
+                return Err(fail(format!(
+                    "panel_order names '{name}', which is not among the panels"
+                )))
+            }
         }
     }
     if let Some((name, _)) = panels.first() {
@@ -103,9 +117,12 @@ fn seam(
 ) -> Result<Seam, String> {
     let side = |k: usize| -> Result<SeamSide, String> {
         let side = &stitch.sides[k];
-        let panel = *index
-            .get(side.panel.as_str())
-            .ok_or_else(|| format!("side {k} names panel '{}', which the pattern does not have", side.panel))?;
+        let panel = *index.get(side.panel.as_str()).ok_or_else(|| {
+            format!(
+                "side {k} names panel '{}', which the pattern does not have",
+                side.panel
+            )
+        })?;
         let count = records[panel].1.edges.len();
         if side.edge >= count {
             return Err(format!(

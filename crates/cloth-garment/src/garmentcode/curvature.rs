@@ -66,7 +66,9 @@ pub(super) fn curve(
                 .ok_or("curvature has no \"type\"")?
                 .as_str()
                 .ok_or("curvature \"type\" must be a string")?;
-            let params = map.get("params").ok_or_else(|| format!("{kind} curvature has no \"params\""))?;
+            let params = map
+                .get("params")
+                .ok_or_else(|| format!("{kind} curvature has no \"params\""))?;
             let points = |n: usize| -> Option<Vec<Point2>> {
                 let list = params.as_array().filter(|l| l.len() == n)?;
                 list.iter().map(point).collect()

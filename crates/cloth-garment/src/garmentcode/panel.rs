@@ -52,7 +52,10 @@ pub(super) fn panel(
         if let Some(bad) = [a, b].into_iter().find(|&i| i >= vertices.len()) {
             return Err(fail(
                 Some(k),
-                format!("endpoint {bad} is out of range: the panel has {} vertices", vertices.len()),
+                format!(
+                    "endpoint {bad} is out of range: the panel has {} vertices",
+                    vertices.len()
+                ),
             ));
         }
         if a == b {
@@ -68,7 +71,10 @@ pub(super) fn panel(
             .map_err(|reason| fail(Some(k), reason))?;
         let (a, b) = (a * frame.scale, b * frame.scale);
         outline.push(match flip {
-            false => Edge { curve, ..Edge::line(a, b) },
+            false => Edge {
+                curve,
+                ..Edge::line(a, b)
+            },
             true => Edge {
                 curve: curvature::reversed(curve),
                 ..Edge::line(b, a)
@@ -138,7 +144,10 @@ fn mirror(edge: Edge) -> Edge {
 fn chain(ends: &[[usize; 2]], vertices: &[Point2]) -> Result<Vec<bool>, (usize, String)> {
     let n = ends.len();
     if n < 2 {
-        return Err((0, format!("the panel has {n} edge(s); an outline needs at least two")));
+        return Err((
+            0,
+            format!("the panel has {n} edge(s); an outline needs at least two"),
+        ));
     }
     let same = |i: usize, j: usize| i == j || vertices[i] == vertices[j];
     // The first edge runs towards the vertex it shares with the second (forwards when
@@ -150,7 +159,13 @@ fn chain(ends: &[[usize; 2]], vertices: &[Point2]) -> Result<Vec<bool>, (usize, 
     } else if touches(a) {
         true
     } else {
-        return Err((0, "shares no vertex with edge 1: the edges do not form a loop".into()));
+        return Err((
+            1,
+            format!(
+                "joins vertices {} and {}, which edge 0 does not touch: the edges do not form a loop",
+                ends[1][0], ends[1][1]
+            ),
+        ));
     };
     let mut reversed = vec![first];
     let mut at = if first { a } else { b };

@@ -126,8 +126,12 @@ impl<'de> Deserialize<'de> for Stitch {
                 )
             }
             fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Stitch, A::Error> {
-                let a = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(0, &self))?;
-                let b = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(1, &self))?;
+                let a = seq
+                    .next_element()?
+                    .ok_or_else(|| de::Error::invalid_length(0, &self))?;
+                let b = seq
+                    .next_element()?
+                    .ok_or_else(|| de::Error::invalid_length(1, &self))?;
                 let tag = seq.next_element()?;
                 if seq.next_element::<IgnoredAny>()?.is_some() {
                     return Err(de::Error::invalid_length(4, &self));

@@ -15,7 +15,11 @@ pub(crate) fn equal_steps<const D: usize>(points: &[[f64; D]], n: usize) -> Vec<
             segment += 1;
         }
         let (l0, l1) = (lengths[segment], lengths[segment + 1]);
-        let t = if l1 > l0 { ((target - l0) / (l1 - l0)).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if l1 > l0 {
+            ((target - l0) / (l1 - l0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let (p, q) = (points[segment], points[segment + 1]);
         out.push(std::array::from_fn(|d| p[d] + t * (q[d] - p[d])));
     }
@@ -45,6 +49,9 @@ mod tests {
     fn steps_are_equal_and_ends_kept() {
         let line = [[0.0, 0.0], [1.0, 0.0], [1.0, 3.0]];
         let steps = equal_steps(&line, 4);
-        assert_eq!(steps, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [1.0, 2.0], [1.0, 3.0]]);
+        assert_eq!(
+            steps,
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [1.0, 2.0], [1.0, 3.0]]
+        );
     }
 }

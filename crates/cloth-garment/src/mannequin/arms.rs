@@ -51,10 +51,19 @@ pub(crate) fn arm_axes(arms: &ArmMeasurements, lm: &Landmarks) -> [ArmAxis; 2] {
     })
 }
 
+/// Vertices and outward triangles of the left arm along `left`, and of the right arm: its
+/// mirror image in x (triangles reversed to stay outward), so the form is exactly symmetric.
+pub(crate) fn arm_meshes(left: &ArmAxis, segments: usize, spacing: f64) -> [(Vec<Vec3>, Vec<[u32; 3]>); 2] {
+    let (vertices, triangles) = arm_mesh(left, segments, spacing);
+    let mirrored = vertices.iter().map(|p| Vec3::new(-p.x, p.y, p.z)).collect();
+    let reversed = triangles.iter().map(|&[a, b, c]| [a, c, b]).collect();
+    [(vertices, triangles), (mirrored, reversed)]
+}
+
 /// The arm's vertices and outward triangles: circles along the axis from the wrist up to
 /// the joint, their radius easing from the wrist's to the upper arm's along a half cosine
 /// (flat at both ends, so the hemispherical ends meet the tube without a crease).
-pub(crate) fn arm_mesh(axis: &ArmAxis, segments: usize, spacing: f64) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+fn arm_mesh(axis: &ArmAxis, segments: usize, spacing: f64) -> (Vec<Vec3>, Vec<[u32; 3]>) {
     let segments = (segments / 2).max(MIN_ARM_SEGMENTS).next_multiple_of(2);
     let (joint, wrist) = (Vec3::from(axis.joint), Vec3::from(axis.wrist));
     let length = (joint - wrist).norm();
@@ -72,7 +81,9 @@ pub(crate) fn arm_mesh(axis: &ArmAxis, segments: usize, spacing: f64) -> (Vec<Ve
         loft.push(
             (0..segments)
                 .map(|k| {
-                    let (s, c) = (2.0 * PI * k as f64 / segments as f64).sin_cos();
+                    // Half a step off the x-z plane: no vertex on the arm's outer line,
+                    // which runs through the torso's shoulder point and would weld to it.
+                    let (s, c) = (2.0 * PI * (k as f64 + 0.5) / segments as f64).sin_cos();
                     centre + radius * (c * u + s * v)
                 })
                 .collect(),

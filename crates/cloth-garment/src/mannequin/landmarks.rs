@@ -9,16 +9,17 @@
 //!   body dimensions, ASTM D5585 tables), which sit at 0.60-0.63, 0.49-0.51 and 0.45-0.47;
 //! - our assumptions where the tables are silent about a dress form: the armpit 0.063 H
 //!   (about 10 cm) under the shoulder point; the underbust 0.045 H (about 7.5 cm) under the
-//!   bust; the side of the neck base 0.027 H over the shoulder point (a shoulder slope of
-//!   about 18 degrees); the neck stump ending at 0.870 H, the chin's height in Drillis and
-//!   Contini; the form ending at 0.430 H, about 5 cm under the crotch, in one piece.
+//!   bust; the side of the neck base 0.030 H (5 cm) over the shoulder point, a shoulder
+//!   slope of about 19 degrees from the neck to the shoulder point; the neck stump ending
+//!   0.028 H higher, about the chin's height (0.870 H in Drillis and Contini); the form
+//!   ending at 0.430 H, about 5 cm under the crotch, in one piece.
 
 use serde::{Deserialize, Serialize};
 
 use super::Measurements;
 
-const TOP: f64 = 0.870;
-const NECK: f64 = 0.845;
+const TOP: f64 = 0.876;
+const NECK: f64 = 0.848;
 const SHOULDER: f64 = 0.818;
 const ARMPIT: f64 = 0.755;
 const BUST: f64 = 0.720;

@@ -50,6 +50,9 @@ fn centroid(ring: &[Vec3]) -> Vec3 {
 /// the ring's centroid and `height sin(phi)` along `axis`: a quarter ellipse in every
 /// meridian, tangent to the tube at the rim, so the surface stays smooth where a cap meets
 /// it. With `height` equal to the radius it is a hemisphere; lower, a flattened cap.
+///
+/// Each time a ring has shrunk to half the size, every other point is dropped (down to 8),
+/// so the triangles near the pole are not slivers.
 fn dome(ring: &[Vec3], Cap { axis, height }: Cap, spacing: f64) -> (Vec<Vec<Vec3>>, Vec3) {
     let centre = centroid(ring);
     let radius = ring.iter().map(|p| (p - centre).norm()).sum::<f64>() / ring.len() as f64;
@@ -62,47 +65,75 @@ fn dome(ring: &[Vec3], Cap { axis, height }: Cap, spacing: f64) -> (Vec<Vec<Vec3
     let length = super::arclength::cumulative(&meridian)[256];
     let steps = ((length / spacing).ceil() as usize).max(2);
     let stations = equal_steps(&meridian, steps);
+    let mut stride = 1;
     let rings = stations[1..steps]
         .iter()
         .map(|&[r, h]| {
             let shrink = r / radius;
-            ring.iter().map(|p| centre + shrink * (p - centre) + h * axis).collect()
+            while shrink * (stride as f64) < 0.5
+                && ring.len().is_multiple_of(4 * stride)
+                && ring.len() / stride >= 16
+            {
+                stride *= 2;
+            }
+            ring.iter()
+                .step_by(stride)
+                .map(|p| centre + shrink * (p - centre) + h * axis)
+                .collect()
         })
         .collect();
     (rings, centre + height * axis)
 }
 
-/// Quads between consecutive rings, split along their shorter diagonal (the better-shaped
-/// pair of triangles where a ring twists or shrinks), and a fan to each pole.
+/// Bands between consecutive rings and a fan to each pole. Consecutive rings have the same
+/// number of points, or one has twice the other's (a dome thinning out, see [`dome`]), its
+/// even points matching the other's.
 fn fan_and_bands(rings: &[Vec<Vec3>], bottom: Vec3, top: Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let n = rings[0].len();
-    let mut vertices = Vec::with_capacity(rings.len() * n + 2);
-    vertices.push(bottom);
+    let mut vertices = vec![bottom];
+    let mut starts = Vec::with_capacity(rings.len());
     for ring in rings {
+        starts.push(vertices.len());
         vertices.extend_from_slice(ring);
     }
     let top_index = vertices.len() as u32;
     vertices.push(top);
-    let at = |j: usize, k: usize| (1 + j * n + k % n) as u32;
-    let mut triangles = Vec::with_capacity(2 * rings.len() * n);
-    for k in 0..n {
+    let at = |j: usize, k: usize| (starts[j] + k % rings[j].len()) as u32;
+    let mut triangles = Vec::new();
+    for k in 0..rings[0].len() {
         triangles.push([0, at(0, k + 1), at(0, k)]);
     }
     for j in 0..rings.len() - 1 {
-        for k in 0..n {
-            let (l0, l1, u0, u1) = (at(j, k), at(j, k + 1), at(j + 1, k), at(j + 1, k + 1));
-            let p = |i: u32| vertices[i as usize];
-            if (p(u1) - p(l0)).norm() <= (p(u0) - p(l1)).norm() {
-                triangles.push([l0, l1, u1]);
-                triangles.push([l0, u1, u0]);
-            } else {
-                triangles.push([l0, l1, u0]);
-                triangles.push([l1, u1, u0]);
+        let (lower, upper) = (rings[j].len(), rings[j + 1].len());
+        let (l, u) = (|k| at(j, k), |k| at(j + 1, k));
+        if lower == 2 * upper {
+            for k in 0..upper {
+                triangles.push([l(2 * k), l(2 * k + 1), u(k)]);
+                triangles.push([l(2 * k + 1), l(2 * k + 2), u(k + 1)]);
+                triangles.push([l(2 * k + 1), u(k + 1), u(k)]);
+            }
+        } else if upper == 2 * lower {
+            for k in 0..lower {
+                triangles.push([l(k), u(2 * k + 1), u(2 * k)]);
+                triangles.push([l(k), l(k + 1), u(2 * k + 1)]);
+                triangles.push([l(k + 1), u(2 * k + 2), u(2 * k + 1)]);
+            }
+        } else {
+            debug_assert_eq!(lower, upper);
+            for k in 0..lower {
+                // The shorter diagonal: the better-shaped pair where a ring twists or shrinks.
+                let p = |i: u32| vertices[i as usize];
+                if (p(u(k + 1)) - p(l(k))).norm() <= (p(u(k)) - p(l(k + 1))).norm() {
+                    triangles.push([l(k), l(k + 1), u(k + 1)]);
+                    triangles.push([l(k), u(k + 1), u(k)]);
+                } else {
+                    triangles.push([l(k), l(k + 1), u(k)]);
+                    triangles.push([l(k + 1), u(k + 1), u(k)]);
+                }
             }
         }
     }
     let last = rings.len() - 1;
-    for k in 0..n {
+    for k in 0..rings[last].len() {
         triangles.push([at(last, k), at(last, k + 1), top_index]);
     }
     (vertices, triangles)

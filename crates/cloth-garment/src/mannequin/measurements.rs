@@ -25,7 +25,9 @@ pub struct Measurements {
     pub arms: Option<ArmMeasurements>,
 }
 
-/// Arm measurements, in metres and degrees.
+/// Arm measurements, in metres and degrees. Missing fields in a scene file take the
+/// [`Default`] values, an average adult's whatever the height ([`Measurements::with_arms`]
+/// scales the length to the body).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ArmMeasurements {
@@ -39,8 +41,8 @@ pub struct ArmMeasurements {
     pub angle_degrees: f64,
 }
 
-/// An average adult woman's measurements, from the ranges in sizing tables (e.g. EN 13402
-/// size 40 and ASTM D5585): 1.68 m tall, 92-76-98 cm.
+/// A typical adult woman, 1.68 m tall, 92-76-98 cm: mid-range in women's sizing tables,
+/// so garments drafted for a "medium" fit it.
 impl Default for Measurements {
     fn default() -> Self {
         Self {
@@ -104,7 +106,13 @@ impl Measurements {
             positive(field, value)?;
         }
         let h = self.height;
-        within("height", h, 1.2, 2.3, "an adult standing height, the proportions are adult ones")?;
+        within(
+            "height",
+            h,
+            1.2,
+            2.3,
+            "an adult standing height, the proportions are adult ones",
+        )?;
         relative("bust", self.bust, h, 0.3, 1.0)?;
         relative("waist", self.waist, h, 0.25, 1.0)?;
         relative("hip", self.hip, h, 0.3, 1.0)?;

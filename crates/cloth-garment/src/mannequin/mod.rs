@@ -65,10 +65,10 @@ impl Mannequin {
             return Err(MannequinError::Resolution {
                 name: "rings",
                 value: rings,
-                expected: "at least 16: the key levels alone need 10",
+                expected: "at least 16 (the 15 key levels are rings already)",
             });
         }
-        if segments < 16 || segments % 4 != 0 {
+        if segments < 16 || !segments.is_multiple_of(4) {
             return Err(MannequinError::Resolution {
                 name: "segments",
                 value: segments,
@@ -89,15 +89,17 @@ impl Mannequin {
             .arms
             .map(|arms| arms::arm_axes(&arms, &landmarks).to_vec())
             .unwrap_or_default();
-        let arms = arm_axes
-            .iter()
-            .zip(ARM_NAMES)
-            .map(|(axis, part)| {
-                let (vertices, triangles) = arms::arm_mesh(axis, segments, mesh.spacing);
-                TriSurface::new(vertices, triangles, &options)
-                    .map_err(|source| MannequinError::Surface { part, source })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let arms = match arm_axes.first() {
+            None => Vec::new(),
+            Some(left) => arms::arm_meshes(left, segments, mesh.spacing)
+                .into_iter()
+                .zip(ARM_NAMES)
+                .map(|((vertices, triangles), part)| {
+                    TriSurface::new(vertices, triangles, &options)
+                        .map_err(|source| MannequinError::Surface { part, source })
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+        };
         Ok(Self {
             measurements: *m,
             landmarks,
@@ -163,4 +165,3 @@ impl Mannequin {
         TriSurface::merged(&parts)
     }
 }
-

@@ -5,14 +5,13 @@ use std::path::Path;
 
 use super::Mannequin;
 
-/// Decimals of the coordinates: micrometres, far below any feature of a body, and the
-/// file stays small enough to ship (about 40 bytes per vertex).
-const DECIMALS: usize = 6;
-
 pub(super) fn write(mannequin: &Mannequin, path: &Path) -> std::io::Result<()> {
     let mut out = BufWriter::new(std::fs::File::create(path)?);
     let m = mannequin.measurements();
-    writeln!(out, "# Parametric dress form (cloth-garment mannequin), metres, z up, front -y")?;
+    writeln!(
+        out,
+        "# Parametric dress form (cloth-garment mannequin), metres, z up, front -y"
+    )?;
     writeln!(
         out,
         "# height {} bust {} waist {} hip {} shoulder_width {} neck_girth {}",
@@ -34,8 +33,12 @@ pub(super) fn write(mannequin: &Mannequin, path: &Path) -> std::io::Result<()> {
             surface.vertices().len(),
             surface.triangles().len()
         )?;
+        // The shortest decimals that read back to the same f64, so a file read back is the
+        // generated surface exactly. Rounding to micrometres would not do: a flat cap's
+        // vertices all round the same way in z, which moves its whole area and changes the
+        // volume by some 1e-7 relative.
         for p in surface.vertices() {
-            writeln!(out, "v {:.d$} {:.d$} {:.d$}", p.x, p.y, p.z, d = DECIMALS)?;
+            writeln!(out, "v {} {} {}", p.x, p.y, p.z)?;
         }
         for [a, b, c] in surface.triangles() {
             writeln!(out, "f {} {} {}", a + offset, b + offset, c + offset)?;

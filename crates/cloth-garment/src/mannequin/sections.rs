@@ -206,11 +206,13 @@ mod tests {
         // Mirroring across x = 0 maps index k to n/2 - k, modulo n, on both halves.
         for (k, p) in ring.iter().enumerate() {
             let q = ring[(32 + 64 - k) % 64];
-            assert!((p[0] + q[0]).abs() < 1e-12 && (p[1] - q[1]).abs() < 1e-12, "{k}: {p:?} {q:?}");
+            assert!(
+                (p[0] + q[0]).abs() < 1e-12 && (p[1] - q[1]).abs() < 1e-12,
+                "{k}: {p:?} {q:?}"
+            );
         }
         let deep = with_girth_at_width(shape, 5.0, 64);
         assert_eq!(deep.half_width, shape.half_width);
         assert!((perimeter(&deep.ring(64)) - 5.0).abs() < 1e-9);
     }
-
 }

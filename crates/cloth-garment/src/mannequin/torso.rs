@@ -25,14 +25,23 @@ const UNDERBUST_BLEND: f64 = 0.45;
 /// some 5 cm under the bust for an average woman.
 const ARMPIT_GIRTH: f64 = 0.95;
 /// The armpit section may be at most this fraction of the shoulder width, so the form
-/// always widens from the armpit up to the shoulder points.
+/// widens from the armpit up to the shoulder points; unless the bust is wider still
+/// (narrow shoulders, full bust), when it may be this fraction of the bust's width, so the
+/// chest does not pinch in between bust and shoulders.
 const ARMPIT_WIDTH: f64 = 0.85;
+const ARMPIT_TO_BUST_WIDTH: f64 = 0.95;
 /// Depth of the section through the shoulder points as a fraction of the bust girth
 /// (14 cm for a 92 cm bust: the upper chest and back at the collar bones).
 const SHOULDER_DEPTH: f64 = 0.155;
 /// How far behind the centre line the shoulder points sit, as a fraction of the shoulder
 /// section's depth: the shoulders are set back a little from the chest.
 const SHOULDER_SHIFT: f64 = 0.035;
+/// Radius of the shoulder's rounded end and of the turn into the neck, as fractions of the
+/// shoulder line's run from the neck to the shoulder point.
+const SHOULDER_TIP: f64 = 0.1;
+const NECK_FILLET: f64 = 0.06;
+/// Key sections along the shoulder line between the shoulder point and the neck.
+const SHOULDER_KNOTS: usize = 6;
 /// Girth at the top of the neck stump as a fraction of the neck base's.
 const NECK_TOP_GIRTH: f64 = 0.95;
 /// Height of the domed caps as a fraction of the end section's smaller half-extent: low
@@ -68,7 +77,12 @@ pub(crate) fn torso(m: &Measurements, lm: &Landmarks, rings: Rings, segments: us
     let (knots, caps) = key_sections(m, lm, segments);
     let zs: Vec<f64> = knots.iter().map(|k| k.z).collect();
     let splines: Vec<MonotoneCubic> = (0..PARAMETERS)
-        .map(|i| MonotoneCubic::new(zs.clone(), knots.iter().map(|k| k.section.to_array()[i]).collect()))
+        .map(|i| {
+            MonotoneCubic::new(
+                zs.clone(),
+                knots.iter().map(|k| k.section.to_array()[i]).collect(),
+            )
+        })
         .collect();
     let section_at = |z: f64| Section::from_array(std::array::from_fn(|i| splines[i].at(z)));
 
@@ -93,8 +107,7 @@ pub(crate) fn torso(m: &Measurements, lm: &Landmarks, rings: Rings, segments: us
         Rings::Count(n) => lengths.iter().sum::<f64>() / n as f64,
     };
     let mut heights = vec![zs[0]];
-    for profile in &profiles {
-        let length = cumulative(profile)[PROFILE_SAMPLES];
+    for (profile, length) in profiles.iter().zip(lengths) {
         let steps = ((length / spacing - 1e-9).ceil() as usize).max(1);
         heights.extend(equal_steps(profile, steps)[1..].iter().map(|p| p[0]));
     }
@@ -151,7 +164,7 @@ fn key_sections(m: &Measurements, lm: &Landmarks, n: usize) -> (Vec<Knot>, (f64,
     let bust = with_girth(shape(0.80, 0.58, 0.0, 2.2, 2.4, 2.0), m.bust, n);
     let armpit_girth = ARMPIT_GIRTH * m.bust;
     let mut armpit = with_girth(shape(0.70, 0.50, 0.0, 2.6, 2.0, 2.0), armpit_girth, n);
-    let widest = ARMPIT_WIDTH * lm.shoulder_x;
+    let widest = (ARMPIT_WIDTH * lm.shoulder_x).max(ARMPIT_TO_BUST_WIDTH * bust.half_width);
     if armpit.half_width > widest {
         let narrowed = armpit.scaled(widest / armpit.half_width);
         armpit = with_girth_at_width(narrowed, armpit_girth, n);
@@ -170,23 +183,22 @@ fn key_sections(m: &Measurements, lm: &Landmarks, n: usize) -> (Vec<Knot>, (f64,
         n,
     );
 
-    // The shoulder line, from the shoulder point up to the side of the neck: it leaves the
-    // shoulder point rounded (a quarter of the run inwards in the first 30 % of the rise),
-    // runs straight along the slope, and turns up into the neck.
-    let run = lm.shoulder_x - neck.half_width;
+    // Sections along the shoulder line: their width follows the line, everything else
+    // goes from the shoulder section to the neck's in proportion to height.
     let rise = lm.neck_z - lm.shoulder_z;
-    let slope = |rise_fraction: f64, run_fraction: f64| Knot {
-        z: lm.shoulder_z + rise_fraction * rise,
+    let line = shoulder_line(lm.shoulder_x, neck.half_width, lm.shoulder_z, lm.neck_z);
+    let slope = line.iter().map(|&[x, z]| Knot {
+        z,
         section: Section {
-            half_width: lm.shoulder_x - run_fraction * run,
-            ..blend(shoulder, neck, rise_fraction)
+            half_width: x,
+            ..blend(shoulder, neck, (z - lm.shoulder_z) / rise)
         },
-    };
+    });
 
     let cap = |s: &Section| CAP_HEIGHT * s.half_width.min(0.5 * s.depth());
     let caps = (cap(&bottom), cap(&neck_top));
     let knot = |z: f64, section: Section| Knot { z, section };
-    let knots = vec![
+    let mut knots = vec![
         knot(lm.bottom_z + caps.0, bottom),
         knot(lm.hip_z, hip),
         knot(lm.waist_z, waist),
@@ -194,17 +206,59 @@ fn key_sections(m: &Measurements, lm: &Landmarks, n: usize) -> (Vec<Knot>, (f64,
         knot(lm.bust_z, bust),
         knot(lm.armpit_z, armpit),
         knot(lm.shoulder_z, shoulder),
-        slope(0.3, 0.25),
-        slope(0.75, 0.75),
-        knot(lm.neck_z, neck),
-        knot(lm.top_z - caps.1, neck_top),
     ];
+    knots.extend(slope);
+    knots.push(knot(lm.neck_z, neck));
+    knots.push(knot(lm.top_z - caps.1, neck_top));
     (knots, caps)
 }
 
 /// y of the shoulder points: the widest points of the section through them.
 pub(crate) fn shoulder_y(m: &Measurements) -> f64 {
     SHOULDER_SHIFT * SHOULDER_DEPTH * m.bust
+}
+
+/// Points (x, z) strictly between the ends of the shoulder line seen from the front, from
+/// the shoulder point `(shoulder_x, shoulder_z)` to the side of the neck `(neck_x, neck_z)`:
+/// a rounded shoulder end (vertical where the side of the form comes up to it), a straight
+/// slope, and a concave turn up into the neck. The slope's angle is whatever makes the
+/// three pieces meet the two ends.
+fn shoulder_line(shoulder_x: f64, neck_x: f64, shoulder_z: f64, neck_z: f64) -> Vec<[f64; 2]> {
+    let (run, rise) = (shoulder_x - neck_x, neck_z - shoulder_z);
+    // Radii kept under the rise, so a straight piece with a positive slope always fits.
+    let tip = (SHOULDER_TIP * run).min(0.3 * rise);
+    let fillet = (NECK_FILLET * run).min(0.2 * rise);
+    let radii = tip + fillet;
+    // What is left of the rise at slope angle `g` once the arcs are in; it falls from
+    // rise - radii > 0 at g = 0 to minus infinity near 90 degrees.
+    let left = |g: f64| rise - radii * g.cos() - (run - radii + radii * g.sin()) * g.tan();
+    let (mut lo, mut hi) = (0.0, std::f64::consts::FRAC_PI_2);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if left(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let turn = std::f64::consts::FRAC_PI_2 - lo;
+    let arc = |i: usize| turn * i as f64 / 64.0;
+    let mut dense: Vec<[f64; 2]> = (0..=64)
+        .map(|i| {
+            [
+                shoulder_x - tip + tip * arc(i).cos(),
+                shoulder_z + tip * arc(i).sin(),
+            ]
+        })
+        .collect();
+    dense.extend((0..=64).rev().map(|i| {
+        [
+            neck_x + fillet - fillet * arc(i).cos(),
+            neck_z - fillet * arc(i).sin(),
+        ]
+    }));
+    let points = equal_steps(&dense, SHOULDER_KNOTS + 1);
+    points[1..=SHOULDER_KNOTS].to_vec()
 }
 
 /// Every parameter a fraction `t` of the way from `a` to `b`.

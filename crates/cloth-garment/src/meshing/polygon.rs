@@ -101,8 +101,9 @@ pub fn mesh_region(
             })
     };
     let mut handles = Vec::with_capacity(loops.len());
-    for l in loops {
-        handles.push(l.iter().map(|&p| insert(p)).collect::<Result<Vec<_>, _>>()?);
+    for (k, l) in loops.iter().enumerate() {
+        let bowed = bow_straight_runs(l, k == 0);
+        handles.push(bowed.iter().map(|&p| insert(p)).collect::<Result<Vec<_>, _>>()?);
     }
     for &p in points {
         insert(p)?;
@@ -167,6 +168,47 @@ pub fn mesh_region(
         triangles,
         loop_vertices,
     })
+}
+
+/// Points along a straight boundary are collinear only up to rounding, and where rounding
+/// makes the boundary dent inward the triangulation puts flat slivers between the dent
+/// and its chord. So each straight run is bowed out of the region by a millionth of its
+/// length at the middle (a parabola: a fraction of a micrometre on a garment), which
+/// rounding cannot undo. `outer` says the region is inside the loop (else outside it).
+fn bow_straight_runs(points: &[Vector2<f64>], outer: bool) -> Vec<Vector2<f64>> {
+    let n = points.len();
+    let at = |k: usize| points[k % n];
+    let straight = |k: usize| {
+        let (a, b) = (at(k + n - 1), at(k));
+        let (u, v) = (b - a, at(k + 1) - b);
+        u.perp(&v).abs() <= 1e-9 * u.norm() * v.norm() && u.dot(&v) > 0.0
+    };
+    let area: f64 = (0..n).map(|k| at(k).perp(&at(k + 1))).sum();
+    // Outward of the region is right of travel for a counter-clockwise outer loop.
+    let side = if (area > 0.0) == outer { 1.0 } else { -1.0 };
+    let mut out = points.to_vec();
+    let Some(first_corner) = (0..n).find(|&k| !straight(k)) else {
+        return out;
+    };
+    let mut k = first_corner;
+    for _ in 0..n {
+        let next = (1..=n).map(|j| k + j).find(|&j| !straight(j % n)).unwrap_or(k + n);
+        if next > k + 1 {
+            let (a, b) = (at(k), at(next));
+            let chord = b - a;
+            let len = chord.norm();
+            let normal = Vector2::new(chord.y, -chord.x) / len * side;
+            for j in k + 1..next {
+                let t = (at(j) - a).dot(&chord) / (len * len);
+                out[j % n] = at(j) + normal * (1e-6 * len * 4.0 * t * (1.0 - t));
+            }
+        }
+        k = next;
+        if k >= first_corner + n {
+            break;
+        }
+    }
+    out
 }
 
 /// Even-odd point-in-polygon.

@@ -46,7 +46,12 @@ pub fn sew(
 ) -> Result<Sewn, GarmentError> {
     settings.validate()?;
     let start = Instant::now();
-    let sewing_fabric = fabric.clone().with_drag(fabric.drag.max(settings.drag));
+    // Friction on the body would hold seams apart where the panels press on it; the
+    // drape afterwards has the fabric's own.
+    let sewing_fabric = fabric
+        .clone()
+        .with_drag(fabric.drag.max(settings.drag))
+        .with_friction(0.0);
     let solver = SolverSettings {
         integrator: Integrator::ImplicitEuler,
         time_step: settings.time_step,

@@ -33,7 +33,7 @@ impl Default for SewingSettings {
             max_steps: 3000,
             pull_strain: 0.01,
             ramp_time: 0.2,
-            reach: 0.004,
+            reach: 0.0005,
             drag: 5.0,
         }
     }
