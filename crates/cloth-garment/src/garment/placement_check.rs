@@ -13,7 +13,8 @@ pub struct PlacementWarning {
     pub depth: f64,
     /// Where that vertex is.
     pub point: Vec3,
-    /// The direction to move the panel by `depth` plus a margin, to clear the body.
+    /// The direction to move the panel by `depth` plus a margin, to clear the body: the
+    /// panel's mean front normal.
     pub outward: Vec3,
 }
 
@@ -47,6 +48,13 @@ impl Garment {
         for (t, tri) in self.mesh.triangles().iter().enumerate() {
             tri.iter().for_each(|&i| panel_of[i] = self.triangle_panel[t]);
         }
+        // Panels face out of the garment (+z of their frames), and their triangles are
+        // wound counter-clockwise seen from the front: the area-weighted normal points out.
+        let mut facing = vec![Vec3::zeros(); self.panel_names.len()];
+        for (t, tri) in self.mesh.triangles().iter().enumerate() {
+            let [a, b, c] = tri.map(|i| x[i]);
+            facing[self.triangle_panel[t]] += (b - a).cross(&(c - a));
+        }
         for (i, p) in x.iter().enumerate() {
             if let Some((d, body)) = bodies.signed_distance(0.0, p) {
                 let slot = &mut deepest[panel_of[i]];
@@ -61,13 +69,7 @@ impl Garment {
             .filter_map(|(panel, found)| {
                 let (depth, i, body) = (*found)?;
                 let b = &bodies.bodies()[body];
-                // Out of the body is away from its nearest surface point.
-                let centre = {
-                    let (lo, hi) = b.surface_at(0.0).bounding_box();
-                    (lo + hi) / 2.0
-                };
-                let away = x[i] - centre;
-                let outward = Vec3::new(away.x, away.y, 0.0).try_normalize(1e-12).unwrap_or(Vec3::x());
+                let outward = facing[panel].try_normalize(1e-12).unwrap_or(Vec3::x());
                 Some(PlacementWarning {
                     panel: self.panel_names[panel].clone(),
                     body: b.name().to_string(),

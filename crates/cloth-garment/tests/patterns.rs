@@ -1,0 +1,200 @@
+//! Patterns in our TOML format: reading, meshing, seam pairing, welding, and bad input.
+
+use cloth_collide::Bodies;
+use cloth_garment::mannequin::{Mannequin, Measurements};
+use cloth_garment::meshing::ANGLE_LIMIT_DEGREES;
+use cloth_garment::{GarmentBuilder, Pattern, PatternError};
+
+const SKIRT: &str = include_str!("../../../assets/patterns/skirt.toml");
+const DRESS: &str = include_str!("../../../assets/patterns/dress.toml");
+
+/// A two-panel tube: a 40 x 30 cm front with a 20 cm arc at the top and a circular hole,
+/// and a back, joined at the sides; the back's right side 8% longer (ease).
+fn tube(back_right_height: f64, extra: &str) -> String {
+    format!(
+        r#"
+units = "cm"
+[[panels]]
+name = "front"
+grain = [1, 1]
+outline = [
+    {{ start = [-20, 0], name = "hem" }},
+    {{ start = [20, 0], name = "right" }},
+    {{ start = [20, 30], name = "top", arc = {{ radius = 25, ccw = true }} }},
+    {{ start = [-20, 30], name = "left" }},
+]
+holes = [[ {{ start = [-3, 10] }}, {{ start = [3, 10], arc = {{ radius = 3 }} }} ]]
+placement = {{ rotation = [90, 0, 0], translation = [0, -20, 50] }}
+
+[[panels]]
+name = "back"
+outline = [
+    {{ start = [-20, 0], name = "hem" }},
+    {{ start = [20, 0], name = "right" }},
+    {{ start = [20, {back_right_height}], name = "top" }},
+    {{ start = [-20, 30], name = "left" }},
+]
+placement = {{ rotation = [90, 0, 180], translation = [0, 20, 50] }}
+
+[[seams]]
+a = {{ panel = "front", edge = "right" }}
+b = {{ panel = "back", edge = "left" }}
+
+[[seams]]
+a = {{ panel = "front", edge = 3 }}
+b = {{ panel = "back", edge = "right" }}
+{extra}
+"#
+    )
+}
+
+#[test]
+fn a_pattern_meshes_with_seams_paired_one_to_one() {
+    let pattern = Pattern::from_toml_str(&tube(32.4, ""), "tube.toml").unwrap();
+    assert_eq!(pattern.panels.len(), 2);
+    assert_eq!(pattern.panels[0].holes.len(), 1);
+    // Units: the front's hem is 40 cm.
+    assert!((pattern.panels[0].outline[0].length() - 0.4).abs() < 1e-12);
+    let h = 0.02;
+    let garment = GarmentBuilder::new(pattern.clone()).edge_length(h).build().unwrap();
+    let mesh = &garment.mesh;
+    // Both sides of each seam have the same count: the longer side's length over h (the
+    // back's right side is the longer one of the second seam).
+    assert_eq!(garment.seams[0].pairs.len(), 15 + 1);
+    assert_eq!(garment.seams[1].pairs.len(), 16 + 1);
+    // Paired vertices are the edges' resampled points: equal fractions of arc length.
+    let x = mesh.positions();
+    for seam in &garment.seams {
+        let n = seam.pairs.len();
+        for (k, &[a, b]) in seam.pairs.iter().enumerate() {
+            let f = k as f64 / (n - 1) as f64;
+            // The front's side is 30 cm, the back's 30 or 32.4 cm: both start at z = 0.5.
+            let (za, zb) = (x[a].z - 0.5, x[b].z - 0.5);
+            assert!((za / 0.3 - f).abs() < 1e-9 || (za / 0.3 - (1.0 - f)).abs() < 1e-9, "{za} at {f}");
+            assert!(zb >= -1e-12 && zb <= 0.324 + 1e-12, "{zb}");
+        }
+    }
+    // The hole is cut: no triangle centroid in the half disc of 3 cm over (0, 10) of the
+    // front (a line, then a half circle back counter-clockwise).
+    let front = |t: usize| garment.triangle_panel[t] == 0;
+    for (t, tri) in mesh.triangles().iter().enumerate().filter(|(t, _)| front(*t)) {
+        let c = tri.iter().map(|&i| x[i]).sum::<cloth_core::Vec3>() / 3.0;
+        let in_hole = c.z > 0.6 && (c.x.powi(2) + (c.z - 0.6).powi(2)).sqrt() < 0.029;
+        assert!(!in_hole, "triangle {t} in the hole");
+    }
+    let area: f64 = (0..mesh.triangles().len()).filter(|&t| front(t)).map(|t| mesh.rest_area(t)).sum();
+    let expected = 0.4 * 0.3 + segment_area(0.25, 0.4) - 0.5 * std::f64::consts::PI * 0.03f64.powi(2);
+    assert!((area / expected - 1.0).abs() < 0.01, "{area} vs {expected}");
+    // Quality: no angle under the refinement's limit but where the outline forces one
+    // (at a corner of the outline, or between boundary points).
+    let uv = mesh.uv();
+    let mut small = 0;
+    for tri in mesh.triangles() {
+        for k in 0..3 {
+            let (a, b, c) = (uv[tri[k]], uv[tri[(k + 1) % 3]], uv[tri[(k + 2) % 3]]);
+            let angle = (b - a).angle(&(c - a)).to_degrees();
+            if angle < ANGLE_LIMIT_DEGREES - 1e-6 {
+                small += 1;
+            }
+        }
+    }
+    assert!(small <= 8, "{small} angles under {ANGLE_LIMIT_DEGREES} degrees");
+    // Grain: the front's warp runs along its diagonal, so its hem (along x) is at 45
+    // degrees to u; the back's grain is the default (along y).
+    let (a, b) = (garment.seams[0].pairs[0][0], garment.seams[0].pairs[1][0]);
+    let d = uv[b] - uv[a];
+    // (To the mesher's bow of straight edges, a millionth of their length.)
+    assert!((d.x.abs() - d.y.abs()).abs() < 1e-6, "{d:?}");
+    // Welding joins each pair and rebuilds hinges across the seams.
+    let welded = garment.weld(x).unwrap();
+    let pairs = garment.seam_pairs().len();
+    assert_eq!(welded.mesh.vertex_count(), mesh.vertex_count() - pairs);
+    assert!(welded.mesh.hinges().len() > mesh.hinges().len());
+    assert!(welded.mesh.has_seams());
+}
+
+#[test]
+fn shipped_patterns_read() {
+    let skirt = Pattern::from_toml_str(SKIRT, "skirt.toml").unwrap();
+    assert_eq!((skirt.panels.len(), skirt.seams.len()), (2, 2));
+    let dress = Pattern::from_toml_str(DRESS, "dress.toml").unwrap();
+    assert_eq!((dress.panels.len(), dress.seams.len()), (2, 4));
+    for pattern in [skirt, dress] {
+        GarmentBuilder::new(pattern).edge_length(0.03).build().unwrap();
+    }
+}
+
+/// Area between a chord of length `c` and its minor arc of radius `r`.
+fn segment_area(r: f64, c: f64) -> f64 {
+    let angle = 2.0 * (c / (2.0 * r)).asin();
+    0.5 * r * r * (angle - angle.sin())
+}
+
+fn error(text: &str) -> String {
+    Pattern::from_toml_str(text, "bad.toml").unwrap_err().to_string()
+}
+
+#[test]
+fn bad_patterns_are_refused_with_the_panel_and_edge() {
+    // A self-intersecting outline (a bow tie).
+    let bow = tube(30.0, "").replace("{ start = [20, 0], name = \"right\" }", "{ start = [20, 30], name = \"right\" }")
+        .replacen("{ start = [20, 30], name = \"top\", arc = { radius = 25, ccw = true } }", "{ start = [20, 0], name = \"top\" }", 1);
+    let e = error(&bow);
+    assert!(e.contains("panel 'front'") && e.contains("crosses"), "{e}");
+
+    // A seam naming a missing panel, and a missing edge.
+    let e = error(&tube(30.0, "[[seams]]\na = { panel = \"sleeve\", edge = 0 }\nb = { panel = \"back\", edge = 0 }"));
+    assert!(e.contains("seam 2") && e.contains("no panel named 'sleeve'") && e.contains("front, back"), "{e}");
+    let e = error(&tube(30.0, "[[seams]]\na = { panel = \"front\", edge = \"collar\" }\nb = { panel = \"back\", edge = 0 }"));
+    assert!(e.contains("seam 2") && e.contains("panel 'front' has no edge 'collar'") && e.contains("hem, right"), "{e}");
+    let e = error(&tube(30.0, "[[seams]]\na = { panel = \"front\", edge = 9 }\nb = { panel = \"back\", edge = 0 }"));
+    assert!(e.contains("has no edge 9"), "{e}");
+
+    // Seam sides differing by more than 10%.
+    let e = error(&tube(34.0, ""));
+    assert!(e.contains("seam 1") && e.contains("panel 'back', edge 'right'") && e.contains("12%"), "{e}");
+
+    // An edge sewn twice.
+    let e = error(&tube(30.0, "[[seams]]\na = { panel = \"front\", edge = \"right\" }\nb = { panel = \"back\", edge = \"hem\" }"));
+    assert!(e.contains("already sewn by seam 0"), "{e}");
+
+    // Unknown keys and syntax errors carry the line.
+    let e = error(&tube(30.0, "").replace("grain = [1, 1]", "grian = [1, 1]"));
+    assert!(e.contains("bad.toml") && e.contains("line") && e.contains("grian"), "{e}");
+
+    // An arc too small for its chord names the edge.
+    let e = error(&tube(30.0, "").replace("radius = 25", "radius = 5"));
+    assert!(e.contains("panel 'front'") && e.contains("'top'") && e.contains("under half the chord"), "{e}");
+
+    // A hole outside the outline.
+    let e = error(&tube(30.0, "").replace("start = [-3, 10] }}, {{ start = [3, 10]", "x").replace(
+        "{ start = [-3, 10] }, { start = [3, 10], arc = { radius = 3 } }",
+        "{ start = [30, 10] }, { start = [36, 10], arc = { radius = 3 } }",
+    ));
+    assert!(e.contains("hole 0 is not inside the outline"), "{e}");
+    assert!(matches!(
+        Pattern::from_toml_str("units = \"cm\"\npanels = []", "empty.toml"),
+        Err(PatternError::Pattern { .. })
+    ));
+}
+
+#[test]
+fn a_panel_starting_inside_the_body_is_warned_with_the_fix() {
+    let mannequin = Mannequin::new(&Measurements::default()).unwrap();
+    let bodies = Bodies::new(mannequin.bodies());
+    // The skirt as shipped starts clear of the body.
+    let skirt = Pattern::from_toml_str(SKIRT, "skirt.toml").unwrap();
+    let garment = GarmentBuilder::new(skirt.clone()).edge_length(0.03).build().unwrap();
+    assert!(garment.placement_warnings(&bodies).is_empty());
+    // Its front panel pushed 12 cm back goes through the hips.
+    let mut pushed = skirt;
+    pushed.panels[0].placement.translation.y += 0.12;
+    let garment = GarmentBuilder::new(pushed).edge_length(0.03).build().unwrap();
+    let warnings = garment.placement_warnings(&bodies);
+    assert_eq!(warnings.len(), 1);
+    let w = &warnings[0];
+    assert_eq!((w.panel.as_str(), w.body.as_str()), ("front", "torso"));
+    assert!(w.depth > 0.01 && w.outward.y < -0.5, "{w:?}");
+    let text = w.to_string();
+    assert!(text.contains("panel 'front' starts") && text.contains("move it"), "{text}");
+}

@@ -1,0 +1,103 @@
+//! Acceptance of garments sewn from the shipped patterns onto the default mannequin: the
+//! seams close, the garment comes to rest on the body, nothing is inside it, the stretch
+//! at rest is small, and nothing slides off.
+
+use cloth::collide::Bodies;
+use cloth::garment::mannequin::{Landmarks, Mannequin, Measurements};
+use cloth::garment::sewing::{drape, sew, Draped, SewingSettings, Sewn};
+use cloth::garment::{GarmentBuilder, Pattern};
+use cloth::presets::FabricLibrary;
+use cloth::{RestCriteria, SolverSettings, StopReason, StrainReport, Vec3};
+use std::sync::Arc;
+
+/// Coarser than the benchmark's 1.2 cm, so the suite stays quick.
+const EDGE_LENGTH: f64 = 0.02;
+
+struct Dressed {
+    sewn: Sewn,
+    draped: Draped,
+    landmarks: Landmarks,
+    depth_inside: f64,
+    strain: StrainReport,
+}
+
+fn dress(pattern: &str, measurements: Measurements) -> Dressed {
+    let path = format!("{}/assets/patterns/{pattern}", env!("CARGO_MANIFEST_DIR"));
+    let pattern = Pattern::from_toml_path(path.as_ref()).unwrap();
+    let garment = GarmentBuilder::new(pattern).edge_length(EDGE_LENGTH).build().unwrap();
+    let mannequin = Mannequin::new(&measurements).unwrap();
+    let bodies = Arc::new(Bodies::new(mannequin.bodies()));
+    assert!(garment.placement_warnings(&bodies).is_empty());
+    let fabric = FabricLibrary::builtin().fabric("cotton_poplin").unwrap();
+    let settings = SewingSettings::default();
+    let sewn = sew(&garment, &fabric, bodies.clone(), &settings, |_, _, _| {}).unwrap();
+    let rest = RestCriteria {
+        tolerance: 1e-4,
+        consecutive_steps: 10,
+        max_steps: 3000,
+    };
+    let draped = drape(&sewn, &fabric, bodies.clone(), SolverSettings::default(), &rest, |_, _| {}).unwrap();
+    let sim = &draped.simulation;
+    let (depth_inside, _) = bodies.deepest_inside(sim.time(), sim.positions());
+    let strain = StrainReport::new(sim.mesh(), sim.positions());
+    println!(
+        "{}: sewn in {} steps (gap {:.2} mm), at rest after {} steps; max warp {:.2} %, weft {:.2} %",
+        path,
+        sewn.report.steps,
+        1e3 * sewn.report.max_gap,
+        draped.outcome.steps,
+        strain.max_warp,
+        strain.max_weft
+    );
+    Dressed {
+        sewn,
+        draped,
+        landmarks: *mannequin.landmarks(),
+        depth_inside,
+        strain,
+    }
+}
+
+/// What every garment must show at rest.
+fn check_at_rest(d: &Dressed) {
+    assert!(d.sewn.report.max_gap < 1e-3);
+    assert_eq!(d.draped.outcome.reason, StopReason::AtRest);
+    assert_eq!(d.depth_inside, 0.0, "a particle is inside the body");
+    assert!(d.strain.max_warp < 3.0 && d.strain.max_weft < 3.0, "{:?}", (d.strain.max_warp, d.strain.max_weft));
+    let x = d.draped.simulation.positions();
+    let lowest = x.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+    assert!(lowest > 0.0, "the garment touches the floor");
+}
+
+fn centroid(x: &[Vec3]) -> Vec3 {
+    x.iter().sum::<Vec3>() / x.len() as f64
+}
+
+#[test]
+fn the_basic_dress_sews_and_rests_on_the_mannequin() {
+    let d = dress("dress.toml", Measurements::default());
+    check_at_rest(&d);
+    let x = d.draped.simulation.positions();
+    let c = centroid(x);
+    let l = &d.landmarks;
+    // On the shoulders: the top of the dress is at the shoulder line and its centroid
+    // at torso height, centred on the body.
+    let top = x.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    assert!(top > l.shoulder_z && top < l.top_z, "top {top}");
+    assert!(c.z > l.bottom_z && c.z < l.bust_z, "centroid {c}");
+    assert!(c.x.abs() < 0.02 && c.y.abs() < 0.03, "centroid {c}");
+}
+
+#[test]
+fn the_skirt_sews_and_rests_on_the_hips() {
+    let d = dress("skirt.toml", Measurements::default());
+    check_at_rest(&d);
+    let x = d.draped.simulation.positions();
+    let l = &d.landmarks;
+    // Held by the hips: the waistband stays between the waist and the hip line, and the
+    // centroid is on the body (a skirt sliding off would fall past the form's bottom).
+    let top = x.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    assert!(top > l.hip_z && top < l.waist_z + 0.02, "top {top}");
+    let c = centroid(x);
+    assert!(c.z > l.bottom_z - 0.05 && c.z < l.hip_z, "centroid {c}");
+}
