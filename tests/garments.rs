@@ -101,3 +101,18 @@ fn the_skirt_sews_and_rests_on_the_hips() {
     let c = centroid(x);
     assert!(c.z > l.bottom_z - 0.05 && c.z < l.hip_z, "centroid {c}");
 }
+
+#[test]
+fn the_t_shirt_sews_and_rests_on_a_mannequin_with_arms() {
+    let d = dress("tshirt.toml", Measurements::default().with_arms());
+    check_at_rest(&d);
+    let x = d.draped.simulation.positions();
+    let l = &d.landmarks;
+    // On the shoulders, hip length, and the sleeves out along the arms past the torso.
+    let c = centroid(x);
+    assert!(c.z > l.waist_z && c.z < l.armpit_z, "centroid {c}");
+    let lowest = x.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+    assert!(lowest > l.hip_z - 0.05 && lowest < l.waist_z, "hem at {lowest}");
+    let widest = x.iter().map(|p| p.x.abs()).fold(0.0, f64::max);
+    assert!(widest > l.shoulder_x + 0.05, "sleeves end at |x| = {widest}");
+}

@@ -7,6 +7,7 @@ use cloth_garment::{GarmentBuilder, Pattern, PatternError};
 
 const SKIRT: &str = include_str!("../../../assets/patterns/skirt.toml");
 const DRESS: &str = include_str!("../../../assets/patterns/dress.toml");
+const TSHIRT: &str = include_str!("../../../assets/patterns/tshirt.toml");
 
 /// A two-panel tube: a 40 x 30 cm front with a 20 cm arc at the top and a circular hole,
 /// and a back, joined at the sides; the back's right side 8% longer (ease).
@@ -119,7 +120,9 @@ fn shipped_patterns_read() {
     assert_eq!((skirt.panels.len(), skirt.seams.len()), (2, 2));
     let dress = Pattern::from_toml_str(DRESS, "dress.toml").unwrap();
     assert_eq!((dress.panels.len(), dress.seams.len()), (2, 4));
-    for pattern in [skirt, dress] {
+    let shirt = Pattern::from_toml_str(TSHIRT, "tshirt.toml").unwrap();
+    assert_eq!((shirt.panels.len(), shirt.seams.len()), (4, 10));
+    for pattern in [skirt, dress, shirt] {
         GarmentBuilder::new(pattern).edge_length(0.03).build().unwrap();
     }
 }
@@ -172,6 +175,15 @@ fn bad_patterns_are_refused_with_the_panel_and_edge() {
         "{ start = [30, 10] }, { start = [36, 10], arc = { radius = 3 } }",
     ));
     assert!(e.contains("hole 0 is not inside the outline"), "{e}");
+    // Panels of different fabrics are refused when sewing (one fabric per cloth).
+    let mixed = tube(30.0, "").replacen("grain = [1, 1]", "grain = [1, 1]\nfabric = \"silk\"", 1).replacen(
+        "name = \"back\"",
+        "name = \"back\"\nfabric = \"denim\"",
+        1,
+    );
+    let garment = GarmentBuilder::new(Pattern::from_toml_str(&mixed, "mixed.toml").unwrap()).edge_length(0.03).build().unwrap();
+    let e = garment.fabric_name().unwrap_err().to_string();
+    assert!(e.contains("panel 'front' is of 'silk' but panel 'back' of 'denim'"), "{e}");
     assert!(matches!(
         Pattern::from_toml_str("units = \"cm\"\npanels = []", "empty.toml"),
         Err(PatternError::Pattern { .. })

@@ -32,7 +32,8 @@ pub struct Sewn {
     pub bending_calibration: [f64; 2],
 }
 
-/// Sews `garment` of `fabric` around the bodies of `collider`: gravity off, the implicit
+/// Sews `garment` of `fabric` (the one its panels name, if they do: see
+/// [`Garment::fabric_name`]) around the bodies of `collider`: gravity off, the implicit
 /// integrator, a seam pull ramped up over [`SewingSettings::ramp_time`] to a force that
 /// stretches the cloth by at most [`SewingSettings::pull_strain`], and extra air drag so
 /// panels glide into place. Stops when every seam gap is under the tolerance, then welds.
@@ -45,6 +46,7 @@ pub fn sew(
     mut observe: impl FnMut(&Simulation, &StepStats, f64),
 ) -> Result<Sewn, GarmentError> {
     settings.validate()?;
+    garment.fabric_name()?;
     let start = Instant::now();
     // Friction on the body would hold seams apart where the panels press on it; the
     // drape afterwards has the fabric's own.
