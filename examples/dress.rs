@@ -8,14 +8,16 @@
 //! 100, 500, 1000 and 2000 iterations of explicit Euler (at a step small enough to be
 //! stable) and after 100 and 500 of implicit Euler, with the time per iteration.
 //!
+//! The draped dress and the mannequin are written as OBJ to `target/dress/` (or `--out`).
+//!
 //!     cargo run --release --example dress [-- --edge 0.0123] [--repeat 3] [--experiment] [--out DIR]
 
 use cloth::collide::Bodies;
 use cloth::garment::mannequin::{Mannequin, Measurements};
-use cloth::garment::sewing::{drape, drape_simulation, sew, Sewn, SewingSettings};
+use cloth::garment::sewing::{drape, drape_simulation, sew, DrapeSettings, Sewn, SewingSettings};
 use cloth::garment::{GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
-use cloth::{Fabric, Integrator, RestCriteria, SolverSettings, StrainReport};
+use cloth::{Fabric, Integrator, SolverSettings, StrainReport};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -37,7 +39,7 @@ fn parse() -> Result<Args, String> {
         edge: EDGE_LENGTH,
         repeat: 1,
         experiment: false,
-        out: None,
+        out: Some(PathBuf::from("target/dress")),
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -78,12 +80,13 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         let garment = GarmentBuilder::new(pattern.clone()).edge_length(args.edge).build()?;
         let meshing = start.elapsed().as_secs_f64();
         let sewn = sew(&garment, &fabric, bodies.clone(), &SewingSettings::default(), |_, _, _| {})?;
+        let settings = DrapeSettings::default();
         let draped = drape(
             &sewn,
             &fabric,
             bodies.clone(),
-            SolverSettings::default(),
-            &drape_rest(),
+            settings.solver(),
+            &settings.rest(),
             |_, _| {},
         )?;
         let total = start.elapsed().as_secs_f64();
@@ -131,16 +134,6 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         median(|r| r.3)
     );
     Ok(())
-}
-
-/// The stopping mechanism for the drape: every particle moves less than 0.1 mm per step
-/// (6 mm/s at 1/60 s) for 10 steps in a row.
-fn drape_rest() -> RestCriteria {
-    RestCriteria {
-        tolerance: 1e-4,
-        consecutive_steps: 10,
-        max_steps: 3000,
-    }
 }
 
 /// The source's table from the sewn dress.

@@ -4,10 +4,10 @@
 
 use cloth::collide::Bodies;
 use cloth::garment::mannequin::{Landmarks, Mannequin, Measurements};
-use cloth::garment::sewing::{drape, sew, Draped, SewingSettings, Sewn};
+use cloth::garment::sewing::{drape, sew, DrapeSettings, Draped, SewingSettings, Sewn};
 use cloth::garment::{GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
-use cloth::{RestCriteria, SolverSettings, StopReason, StrainReport, Vec3};
+use cloth::{StopReason, StrainReport, Vec3};
 use std::sync::Arc;
 
 /// Coarser than the benchmark's 1.2 cm, so the suite stays quick.
@@ -31,12 +31,8 @@ fn dress(pattern: &str, measurements: Measurements) -> Dressed {
     let fabric = FabricLibrary::builtin().fabric("cotton_poplin").unwrap();
     let settings = SewingSettings::default();
     let sewn = sew(&garment, &fabric, bodies.clone(), &settings, |_, _, _| {}).unwrap();
-    let rest = RestCriteria {
-        tolerance: 1e-4,
-        consecutive_steps: 10,
-        max_steps: 3000,
-    };
-    let draped = drape(&sewn, &fabric, bodies.clone(), SolverSettings::default(), &rest, |_, _| {}).unwrap();
+    let settings = DrapeSettings::default();
+    let draped = drape(&sewn, &fabric, bodies.clone(), settings.solver(), &settings.rest(), |_, _| {}).unwrap();
     let sim = &draped.simulation;
     let (depth_inside, _) = bodies.deepest_inside(sim.time(), sim.positions());
     let strain = StrainReport::new(sim.mesh(), sim.positions());

@@ -3,7 +3,7 @@
 
 mod settings;
 
-pub use settings::SewingSettings;
+pub use settings::{DrapeSettings, SewingSettings};
 
 use crate::garment::{Garment, GarmentError, Welded};
 use cloth_core::{Collider, Fabric, Integrator, RestCriteria, RestOutcome, SeamPull, Simulation, SimulationBuilder};
