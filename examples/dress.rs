@@ -14,7 +14,7 @@
 
 use cloth::collide::Bodies;
 use cloth::garment::mannequin::{Mannequin, Measurements};
-use cloth::garment::sewing::{drape, drape_simulation, sew, DrapeSettings, Sewn, SewingSettings};
+use cloth::garment::sewing::{drape, drape_simulation, sew, DrapeSettings, SewingSettings, Sewn};
 use cloth::garment::{GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
 use cloth::{Fabric, Integrator, SolverSettings, StrainReport};
@@ -68,22 +68,30 @@ fn main() {
 
 fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     let pattern = Pattern::from_toml_path(PATTERN.as_ref())?;
-    let fabric = FabricLibrary::builtin().fabric(FABRIC)?;
+
     let mannequin = Mannequin::new(&Measurements::default())?;
     let bodies = Arc::new(Bodies::new(mannequin.bodies()));
     if args.experiment {
-        return experiment(&pattern, &fabric, &bodies, args);
+        return experiment(&pattern, &bodies, args);
     }
     let mut runs = Vec::new();
     for run in 0..args.repeat {
         let start = Instant::now();
-        let garment = GarmentBuilder::new(pattern.clone()).edge_length(args.edge).build()?;
+        let garment = GarmentBuilder::new(pattern.clone())
+            .edge_length(args.edge)
+            .build()?;
         let meshing = start.elapsed().as_secs_f64();
-        let sewn = sew(&garment, &fabric, bodies.clone(), &SewingSettings::default(), |_, _, _| {})?;
+        let fabrics = FabricLibrary::builtin().panel_fabrics(&garment, FABRIC)?;
+        let sewn = sew(
+            &garment,
+            &fabrics,
+            bodies.clone(),
+            &SewingSettings::default(),
+            |_, _, _| {},
+        )?;
         let settings = DrapeSettings::default();
         let draped = drape(
             &sewn,
-            &fabric,
             bodies.clone(),
             settings.solver(),
             &settings.rest(),
@@ -116,7 +124,13 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             cloth::obj::write_cloth_obj(&dir.join("dress.obj"), sim.positions(), sim.mesh().triangles())?;
             mannequin.write_obj(&dir.join("mannequin.obj"))?;
         }
-        runs.push((total, meshing, sewn.report.seconds, draped.seconds, sim.mesh().vertex_count()));
+        runs.push((
+            total,
+            meshing,
+            sewn.report.seconds,
+            draped.seconds,
+            sim.mesh().vertex_count(),
+        ));
     }
     let median = |f: fn(&(f64, f64, f64, f64, usize)) -> f64| {
         let mut v: Vec<f64> = runs.iter().map(f).collect();
@@ -139,21 +153,33 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
 /// The source's table from the sewn dress.
 fn experiment(
     pattern: &Pattern,
-    fabric: &Fabric,
     bodies: &Arc<Bodies>,
     args: &Args,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let garment = GarmentBuilder::new(pattern.clone()).edge_length(args.edge).build()?;
-    let sewn: Sewn = sew(&garment, fabric, bodies.clone(), &SewingSettings::default(), |_, _, _| {})?;
+    let garment = GarmentBuilder::new(pattern.clone())
+        .edge_length(args.edge)
+        .build()?;
+    let fabrics = FabricLibrary::builtin().panel_fabrics(&garment, FABRIC)?;
+    let sewn: Sewn = sew(
+        &garment,
+        &fabrics,
+        bodies.clone(),
+        &SewingSettings::default(),
+        |_, _, _| {},
+    )?;
     println!(
         "basic dress, {} particles after welding, {FABRIC}",
         sewn.welded.mesh.vertex_count()
     );
     println!("| integrator | h, s | iterations | max warp (horizontal) stretch | max weft (vertical) stretch | ms per iteration (median) |");
     println!("|---|---|---|---|---|---|");
-    let explicit_h = stable_explicit_step(&sewn, fabric, bodies)?;
+    let explicit_h = stable_explicit_step(&sewn, bodies)?;
     for (integrator, h, checkpoints) in [
-        (Integrator::ExplicitEuler, explicit_h, vec![100u64, 500, 1000, 2000]),
+        (
+            Integrator::ExplicitEuler,
+            explicit_h,
+            vec![100u64, 500, 1000, 2000],
+        ),
         (Integrator::ImplicitEuler, 1.0 / 60.0, vec![100, 500]),
     ] {
         let solver = SolverSettings {
@@ -161,7 +187,7 @@ fn experiment(
             time_step: h,
             ..SolverSettings::default()
         };
-        let mut sim = drape_simulation(&sewn, fabric, bodies.clone(), solver)?;
+        let mut sim = drape_simulation(&sewn, bodies.clone(), solver)?;
         let mut times = Vec::new();
         let last = *checkpoints.last().expect("checkpoints");
         for step in 1..=last {
@@ -189,22 +215,27 @@ fn experiment(
 /// the lightest particle, halved until 200 steps from the sewn state run without
 /// diverging, then halved once more for margin (stiffening laws, bending of small
 /// elements and contact penalties make the guess optimistic).
-fn stable_explicit_step(
-    sewn: &Sewn,
-    fabric: &Fabric,
-    bodies: &Arc<Bodies>,
-) -> Result<f64, Box<dyn std::error::Error>> {
-    let mesh = &sewn.welded.mesh;
-    let masses = mesh.lumped_masses(fabric.area_density);
+fn stable_explicit_step(sewn: &Sewn, bodies: &Arc<Bodies>) -> Result<f64, Box<dyn std::error::Error>> {
+    let lightest_fabric = sewn
+        .fabrics
+        .iter()
+        .map(|f| f.area_density)
+        .fold(f64::INFINITY, f64::min);
+    let stiffest = sewn
+        .fabrics
+        .iter()
+        .map(Fabric::membrane_stiffness)
+        .fold(0.0, f64::max);
+    let masses = sewn.welded.mesh.lumped_masses(lightest_fabric);
     let lightest = masses.iter().copied().fold(f64::INFINITY, f64::min);
-    let mut h = 2.0 / (8.0 * fabric.membrane_stiffness() / lightest).sqrt();
+    let mut h = 2.0 / (8.0 * stiffest / lightest).sqrt();
     for _ in 0..8 {
         let solver = SolverSettings {
             integrator: Integrator::ExplicitEuler,
             time_step: h,
             ..SolverSettings::default()
         };
-        let mut sim = drape_simulation(sewn, fabric, bodies.clone(), solver)?;
+        let mut sim = drape_simulation(sewn, bodies.clone(), solver)?;
         if (0..200).all(|_| sim.step().is_ok()) {
             return Ok(h / 2.0);
         }

@@ -24,15 +24,27 @@ struct Dressed {
 fn dress(pattern: &str, measurements: Measurements) -> Dressed {
     let path = format!("{}/assets/patterns/{pattern}", env!("CARGO_MANIFEST_DIR"));
     let pattern = Pattern::from_toml_path(path.as_ref()).unwrap();
-    let garment = GarmentBuilder::new(pattern).edge_length(EDGE_LENGTH).build().unwrap();
+    let garment = GarmentBuilder::new(pattern)
+        .edge_length(EDGE_LENGTH)
+        .build()
+        .unwrap();
     let mannequin = Mannequin::new(&measurements).unwrap();
     let bodies = Arc::new(Bodies::new(mannequin.bodies()));
     assert!(garment.placement_warnings(&bodies).is_empty());
-    let fabric = FabricLibrary::builtin().fabric("cotton_poplin").unwrap();
+    let fabrics = FabricLibrary::builtin()
+        .panel_fabrics(&garment, "cotton_poplin")
+        .unwrap();
     let settings = SewingSettings::default();
-    let sewn = sew(&garment, &fabric, bodies.clone(), &settings, |_, _, _| {}).unwrap();
+    let sewn = sew(&garment, &fabrics, bodies.clone(), &settings, |_, _, _| {}).unwrap();
     let settings = DrapeSettings::default();
-    let draped = drape(&sewn, &fabric, bodies.clone(), settings.solver(), &settings.rest(), |_, _| {}).unwrap();
+    let draped = drape(
+        &sewn,
+        bodies.clone(),
+        settings.solver(),
+        &settings.rest(),
+        |_, _| {},
+    )
+    .unwrap();
     let sim = &draped.simulation;
     let (depth_inside, _) = bodies.deepest_inside(sim.time(), sim.positions());
     let strain = StrainReport::new(sim.mesh(), sim.positions());
@@ -59,7 +71,11 @@ fn check_at_rest(d: &Dressed) {
     assert!(d.sewn.report.max_gap < 1e-3);
     assert_eq!(d.draped.outcome.reason, StopReason::AtRest);
     assert_eq!(d.depth_inside, 0.0, "a particle is inside the body");
-    assert!(d.strain.max_warp < 3.0 && d.strain.max_weft < 3.0, "{:?}", (d.strain.max_warp, d.strain.max_weft));
+    assert!(
+        d.strain.max_warp < 3.0 && d.strain.max_weft < 3.0,
+        "{:?}",
+        (d.strain.max_warp, d.strain.max_weft)
+    );
     let x = d.draped.simulation.positions();
     let lowest = x.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
     assert!(lowest > 0.0, "the garment touches the floor");
@@ -111,4 +127,23 @@ fn the_t_shirt_sews_and_rests_on_a_mannequin_with_arms() {
     assert!(lowest > l.hip_z - 0.05 && lowest < l.waist_z, "hem at {lowest}");
     let widest = x.iter().map(|p| p.x.abs()).fold(0.0, f64::max);
     assert!(widest > l.shoulder_x + 0.05, "sleeves end at |x| = {widest}");
+}
+
+#[test]
+fn each_panel_gets_the_fabric_it_names() {
+    let path = format!("{}/assets/patterns/skirt.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut pattern = Pattern::from_toml_path(path.as_ref()).unwrap();
+    pattern.panels[1].fabric = Some("wang_black_denim".into());
+    let garment = GarmentBuilder::new(pattern.clone())
+        .edge_length(0.03)
+        .build()
+        .unwrap();
+    let library = FabricLibrary::builtin();
+    let fabrics = library.panel_fabrics(&garment, "silk").unwrap();
+    assert_eq!(fabrics[0], library.fabric("silk").unwrap());
+    assert_eq!(fabrics[1], library.fabric("wang_black_denim").unwrap());
+    pattern.panels[0].fabric = Some("tweed".into());
+    let garment = GarmentBuilder::new(pattern).edge_length(0.03).build().unwrap();
+    let e = library.panel_fabrics(&garment, "silk").unwrap_err().to_string();
+    assert!(e.contains("unknown fabric preset `tweed`"), "{e}");
 }

@@ -99,6 +99,19 @@ impl FabricLibrary {
         self.get(name).map(|p| p.fabric.clone())
     }
 
+    /// Each panel's fabric: the preset it names, or `default` where it names none.
+    pub fn panel_fabrics(
+        &self,
+        garment: &cloth_garment::Garment,
+        default: &str,
+    ) -> Result<Vec<Fabric>, PresetError> {
+        garment
+            .panel_fabrics
+            .iter()
+            .map(|name| self.fabric(name.as_deref().unwrap_or(default)))
+            .collect()
+    }
+
     pub fn names(&self) -> impl Iterator<Item = &str> {
         self.presets.iter().map(|p| p.name.as_str())
     }

@@ -7,8 +7,8 @@
 //! vertical projection, and the folds (nodes) from the outline of that projection.
 
 use super::{settle, ValidationError};
-use cloth_garment::meshing::{circle, triangulate_polygon};
 use cloth_core::{Fabric, Pin, RestCriteria, SimulationBuilder, SolverSettings, Vec3};
+use cloth_garment::meshing::{circle, triangulate_polygon};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 

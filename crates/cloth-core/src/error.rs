@@ -56,12 +56,7 @@ pub enum ParamError {
 
 impl ParamError {
     /// `Ok` when `ok`, otherwise the out-of-range error for `name`.
-    pub fn check(
-        ok: bool,
-        name: &'static str,
-        value: f64,
-        expected: &'static str,
-    ) -> Result<(), Self> {
+    pub fn check(ok: bool, name: &'static str, value: f64, expected: &'static str) -> Result<(), Self> {
         if ok {
             Ok(())
         } else {

@@ -28,8 +28,8 @@ pub use fabric::{
 pub use mesh::{ClothMesh, GridBuilder, GridDiagonals};
 pub use metrics::{GridStretch, StrainReport};
 pub use solver::{
-    Constraint, ConstraintKind, Integrator, PcgSettings, Pin, PinMotion, RestCriteria, RestOutcome,
-    SeamPull, Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
+    Constraint, ConstraintKind, Integrator, PcgSettings, Pin, PinMotion, RestCriteria, RestOutcome, SeamPull,
+    Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
 };
 
 /// 3-vectors and 3x3 blocks used throughout the engine.

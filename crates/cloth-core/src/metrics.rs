@@ -22,7 +22,8 @@ impl StrainReport {
     pub fn new(mesh: &ClothMesh, positions: &[Vec3]) -> Self {
         let (mut warp, mut weft) = (Vec::new(), Vec::new());
         for (k, t) in mesh.triangles().iter().enumerate() {
-            let rest = TriangleRest::new(mesh.corner_uv(k)).expect("validated mesh has no degenerate triangle");
+            let rest =
+                TriangleRest::new(mesh.corner_uv(k)).expect("validated mesh has no degenerate triangle");
             let (wu, wv) = rest.deformation(&t.map(|i| positions[i]));
             warp.push(100.0 * (wu.norm() - 1.0));
             weft.push(100.0 * (wv.norm() - 1.0));

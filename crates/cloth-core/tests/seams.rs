@@ -27,7 +27,8 @@ fn welded_grid() -> (ClothMesh, ClothMesh) {
             })
         })
         .collect();
-    let welded = ClothMesh::with_corner_uv(grid.positions().to_vec(), grid.triangles().to_vec(), corner_uv).unwrap();
+    let welded =
+        ClothMesh::with_corner_uv(grid.positions().to_vec(), grid.triangles().to_vec(), corner_uv).unwrap();
     (grid, welded)
 }
 
@@ -66,7 +67,7 @@ fn per_corner_material_coordinates_give_the_rest_state() {
             moved
         };
         SimulationBuilder::new(mesh, fabric.clone())
-            .bending_calibration([1.1, 1.1])
+            .bending_calibration(vec![[1.1, 1.1]])
             .build()
             .unwrap()
     };
@@ -77,8 +78,12 @@ fn per_corner_material_coordinates_give_the_rest_state() {
         assert!((x - y).norm() < 1e-9 * scale, "particle {i}: {x} vs {y}");
     }
     // And the calibration of a seamed mesh is that of its panels.
-    let c = SimulationBuilder::new(welded.clone(), fabric.clone()).build().unwrap();
-    let d = SimulationBuilder::new(welded.cut_at_seams(), fabric).build().unwrap();
+    let c = SimulationBuilder::new(welded.clone(), fabric.clone())
+        .build()
+        .unwrap();
+    let d = SimulationBuilder::new(welded.cut_at_seams(), fabric)
+        .build()
+        .unwrap();
     assert_eq!(c.bending_calibration(), d.bending_calibration());
 }
 
@@ -103,8 +108,10 @@ fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
     // The left strip's right column to the right strip's left column.
     let pairs: Vec<[usize; 2]> = (0..6).map(|j| [j * 3 + 2, n + j * 3]).collect();
     let fabric = Fabric::cotton_like().with_damping(0.01);
-    let mut settings = cloth_core::SolverSettings::default();
-    settings.gravity = Vec3::zeros();
+    let settings = cloth_core::SolverSettings {
+        gravity: Vec3::zeros(),
+        ..Default::default()
+    };
     let mut sim = SimulationBuilder::new(mesh.clone(), fabric.clone())
         .settings(settings)
         .seams(pairs.clone())
@@ -129,7 +136,12 @@ fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
         sim.step().unwrap();
     }
     assert!(gap(&sim) < 1e-3, "gap {}", gap(&sim));
-    assert!(sim.set_seam_pull(SeamPull { stiffness: -1.0, reach: 0.01 }).is_err());
+    assert!(sim
+        .set_seam_pull(SeamPull {
+            stiffness: -1.0,
+            reach: 0.01
+        })
+        .is_err());
     let bad = SimulationBuilder::new(mesh, fabric).seams(vec![[0, 0]]).build();
     assert!(bad.unwrap_err().to_string().contains("seams"));
 }

@@ -7,6 +7,9 @@
 //! come from our TOML format or GarmentCode's JSON; bodies from the parametric mannequin
 //! or any closed mesh.
 
+// `!(x > 0.0)` is how NaN is refused along with the out-of-range values.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod garment;
 pub mod garmentcode;
 pub mod mannequin;
@@ -15,4 +18,6 @@ pub mod pattern;
 pub mod sewing;
 
 pub use garment::{Garment, GarmentBuilder, GarmentError};
-pub use pattern::{Curve, Edge, Panel, Pattern, PatternError, Placement, Seam, SeamOrientation, SeamSide, Wrap};
+pub use pattern::{
+    Curve, Edge, Panel, Pattern, PatternError, Placement, Seam, SeamOrientation, SeamSide, Wrap,
+};

@@ -60,7 +60,7 @@ pub(crate) fn detect_features(
     x: &[Vec3],
     gap_bound: impl Fn(usize) -> f64,
     max_thickness: f64,
-    cloth_friction: f64,
+    cloth_friction: &[f64],
     out: &mut Vec<FeatureContact>,
 ) {
     out.clear();
@@ -88,7 +88,8 @@ pub(crate) fn detect_features(
                         point: hit.point,
                         velocity: f.velocity,
                         thickness: f.thickness,
-                        friction: f.friction.unwrap_or(cloth_friction),
+                        // A triangle's fabric is its corners'.
+                        friction: f.friction.unwrap_or(cloth_friction[tri[0]]),
                     });
                 }
             }

@@ -22,8 +22,6 @@ pub(crate) struct Contacts {
     feature_hits: Vec<feature_contacts::FeatureContact>,
     /// Stiffness of the feature penalty, N/m.
     feature_stiffness: f64,
-    /// The fabric's Coulomb coefficient, for bodies without their own.
-    cloth_friction: f64,
     /// Inverse masses, zero for pinned particles (they do not yield to a push).
     inv_mass: Vec<f64>,
 }
@@ -40,13 +38,14 @@ impl Contacts {
     /// `feature_stiffness` (N/m): ten times the fabric's tensile stiffness, so the cloth
     /// rests within the thickness on a corner carrying its weight; an explicit step must
     /// be a few times shorter near features than the cloth alone would allow.
-    /// `cloth_friction`: the fabric's Coulomb coefficient, for bodies without their own.
+    /// `cloth_friction`: each particle's fabric's Coulomb coefficient, for bodies without
+    /// their own.
     pub fn new(
         collider: Arc<dyn Collider>,
         masses: &[f64],
         pinned: &[bool],
         feature_stiffness: f64,
-        cloth_friction: f64,
+        cloth_friction: Vec<f64>,
     ) -> Self {
         // Far particles are not asked again until they may have come within this much of
         // the contact layer; a few thicknesses keep the bounded queries cheap.
@@ -58,11 +57,10 @@ impl Contacts {
             .collect();
         Self {
             collider,
-            particles: ParticleContacts::new(masses.len(), reach, cloth_friction),
+            particles: ParticleContacts::new(reach, cloth_friction),
             features: Vec::with_capacity(64),
             feature_hits: Vec::new(),
             feature_stiffness,
-            cloth_friction,
             inv_mass,
         }
     }
@@ -78,7 +76,7 @@ impl Contacts {
             x,
             |i| particles.gap_lower_bound(i),
             self.collider.max_thickness(),
-            self.cloth_friction,
+            &particles.cloth_friction,
             &mut self.feature_hits,
         );
     }

@@ -115,12 +115,13 @@ pub(crate) struct ParticleContacts {
     pub active: Vec<ActiveContact>,
     /// How far beyond the thickness a query looks, m.
     reach: f64,
-    /// The fabric's Coulomb coefficient, for bodies that do not set their own.
-    cloth_friction: f64,
+    /// Each particle's fabric's Coulomb coefficient, for bodies that do not set their own.
+    pub(super) cloth_friction: Vec<f64>,
 }
 
 impl ParticleContacts {
-    pub fn new(n: usize, reach: f64, cloth_friction: f64) -> Self {
+    pub fn new(reach: f64, cloth_friction: Vec<f64>) -> Self {
+        let n = cloth_friction.len();
         Self {
             state: vec![
                 ParticleState {
@@ -190,7 +191,7 @@ impl ParticleContacts {
             } else {
                 relative.dot(&n).max(-p.gap() / h).min(0.0)
             };
-            let friction = p.friction.unwrap_or(self.cloth_friction);
+            let friction = p.friction.unwrap_or(self.cloth_friction[i]);
             let (kind, velocity) = if friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
                 (ConstraintKind::Fixed, p.velocity + correction * n)

@@ -171,7 +171,12 @@ fn wing_edges(mesh: &ClothMesh, h: &Hinge) -> [nalgebra::Vector2<f64>; 2] {
     h.triangles.map(|t| {
         let tri = mesh.triangles()[t];
         let c = mesh.corner_uv(t);
-        let at = |v: usize| c[tri.iter().position(|&i| i == v).expect("hinge edge is on its wing")];
+        let at = |v: usize| {
+            c[tri
+                .iter()
+                .position(|&i| i == v)
+                .expect("hinge edge is on its wing")]
+        };
         at(h.edge[1]) - at(h.edge[0])
     })
 }
@@ -467,17 +472,34 @@ fn rings_from_boundary(mesh: &ClothMesh) -> Option<Vec<usize>> {
 /// Stiffness of every hinge of `mesh`: `B(fold) |e|^2 / (A1 + A2)`, with the warp and
 /// weft rigidities scaled by the [`calibration`] factors.
 pub fn hinge_stiffnesses(mesh: &ClothMesh, rigidity: &BendingRigidity, kappa: [f64; 2]) -> Vec<f64> {
-    let scaled = BendingRigidity {
+    let scaled = calibrated(rigidity, kappa);
+    hinge_stiffnesses_by_wing(mesh, |_| &scaled)
+}
+
+/// The rigidity scaled by the [`calibration`] factors.
+pub fn calibrated(rigidity: &BendingRigidity, kappa: [f64; 2]) -> BendingRigidity {
+    BendingRigidity {
         warp: kappa[0] * rigidity.warp,
         weft: kappa[1] * rigidity.weft,
         bias: rigidity.bias.map(|b| 0.5 * (kappa[0] + kappa[1]) * b),
-    };
+    }
+}
+
+/// As [`hinge_stiffnesses`], with each triangle's own (calibrated) rigidity: where two
+/// fabrics are sewn together, or across any seam, each wing folds at its own angle to its
+/// own grain, and the hinge takes the mean of the two.
+pub fn hinge_stiffnesses_by_wing<'a>(
+    mesh: &ClothMesh,
+    rigidity_of_triangle: impl Fn(usize) -> &'a BendingRigidity,
+) -> Vec<f64> {
     mesh.hinges()
         .iter()
         .map(|h| {
-            // Across a seam each panel folds at its own angle to its grain: the mean.
             let (ratio, dirs) = hinge_rest(mesh, h);
-            let rigidity: f64 = dirs.iter().map(|d| scaled.along_fold(d.x, d.y)).sum::<f64>() / 2.0;
+            let rigidity: f64 = (0..2)
+                .map(|w| rigidity_of_triangle(h.triangles[w]).along_fold(dirs[w].x, dirs[w].y))
+                .sum::<f64>()
+                / 2.0;
             rigidity * ratio
         })
         .collect()

@@ -216,11 +216,12 @@ impl ClothMesh {
             .zip(&self.corner_uv)
             .map(|(t, c)| {
                 std::array::from_fn(|k| {
-                    *ids.entry((t[k], [c[k].x.to_bits(), c[k].y.to_bits()])).or_insert_with(|| {
-                        positions.push(self.positions[t[k]]);
-                        uv.push(c[k]);
-                        uv.len() - 1
-                    })
+                    *ids.entry((t[k], [c[k].x.to_bits(), c[k].y.to_bits()]))
+                        .or_insert_with(|| {
+                            positions.push(self.positions[t[k]]);
+                            uv.push(c[k]);
+                            uv.len() - 1
+                        })
                 })
             })
             .collect();

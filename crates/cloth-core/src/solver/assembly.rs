@@ -9,7 +9,7 @@ use crate::energy::{
     bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch, stretch::ThreadLaw,
     HessianMode, Local, TriangleRest,
 };
-use crate::fabric::Fabric;
+use crate::fabric::{BendingLaw, Fabric};
 use crate::linalg::BlockSparse;
 use crate::mesh::ClothMesh;
 use crate::{Mat3, Vec3};
@@ -22,6 +22,8 @@ const ELEMENTS_PER_TASK: usize = 256;
 #[derive(Debug, Clone)]
 struct TriElement {
     v: [u32; 3],
+    /// Index of its fabric.
+    fabric: u32,
     rest: TriangleRest,
     slots: [u32; 9],
 }
@@ -30,6 +32,9 @@ struct TriElement {
 struct HingeElement {
     v: [u32; 4],
     stiffness: f64,
+    /// The first wing's fabric's law, and the mean of the wings' Rayleigh damping.
+    law: BendingLaw,
+    damping: f64,
     /// Rest areas of the wings holding `v[2]` and `v[3]`.
     wing_areas: [f64; 2],
     slots: [u32; 16],
@@ -67,16 +72,20 @@ impl<T: std::ops::AddAssign> Shared<T> {
     }
 }
 
-/// Where the stiffness goes: `matrix += scale * K`.
+/// Where the stiffness goes: `matrix += (h^2 + h beta) K`, each element with its fabric's
+/// Rayleigh damping `beta`.
 pub(crate) struct StiffnessTarget<'a> {
     pub matrix: &'a mut BlockSparse,
-    pub scale: f64,
+    pub h: f64,
 }
 
 /// The cloth's internal and external forces over a fixed mesh.
 #[derive(Debug, Clone)]
 pub(crate) struct ForceModel {
-    fabric: Fabric,
+    /// The fabrics, each triangle naming one (a garment's panels may differ).
+    fabrics: Vec<Fabric>,
+    /// Rayleigh damping of the seam pull: the largest of the fabrics'.
+    seam_damping: f64,
     tris: Vec<TriElement>,
     tri_colors: Vec<Range<usize>>,
     hinges: Vec<HingeElement>,
@@ -86,21 +95,27 @@ pub(crate) struct ForceModel {
     seam_energy: Vec<f64>,
     seam_pull: SeamPull,
     masses: Vec<f64>,
-    vertex_area: Vec<f64>,
+    /// Each particle's share of `drag * area`, kg/s.
+    vertex_drag: Vec<f64>,
     tri_energy: Vec<f64>,
     hinge_energy: Vec<f64>,
-    bending_calibration: [f64; 2],
+    bending_calibration: Vec<[f64; 2]>,
 }
 
 impl ForceModel {
-    /// Builds the elements and the matrix pattern they fill; `seams` are the particle
-    /// pairs that seam forces may pull together (see [`SeamPull`]).
+    /// Builds the elements and the matrix pattern they fill. Triangle `t` is of
+    /// `fabrics[triangle_fabric[t]]` (all of the first when `triangle_fabric` is empty, as
+    /// the builder checked); `seams` are the particle pairs that seam forces may pull
+    /// together (see [`SeamPull`]); `calibration` gives each fabric's bending calibration
+    /// instead of computing it.
     pub fn new(
         mesh: &ClothMesh,
-        fabric: Fabric,
+        fabrics: Vec<Fabric>,
+        triangle_fabric: &[usize],
         seams: &[[usize; 2]],
-        calibration: Option<[f64; 2]>,
+        calibration: Option<Vec<[f64; 2]>>,
     ) -> (Self, BlockSparse) {
+        let fabric_of = |t: usize| triangle_fabric.get(t).copied().unwrap_or(0);
         let n = mesh.vertex_count();
         let mut pairs = Vec::new();
         for t in mesh.triangles() {
@@ -127,21 +142,36 @@ impl ForceModel {
             .enumerate()
             .map(|(k, t)| TriElement {
                 v: t.map(|i| i as u32),
-                rest: TriangleRest::new(mesh.corner_uv(k)).expect("validated mesh has no degenerate triangle"),
+                fabric: fabric_of(k) as u32,
+                rest: TriangleRest::new(mesh.corner_uv(k))
+                    .expect("validated mesh has no degenerate triangle"),
                 slots: slots(t).try_into().expect("9 slots"),
             })
             .collect();
-        let kappa = calibration.unwrap_or_else(|| bending::calibration(mesh, &fabric.bending));
-        let stiffness = bending::hinge_stiffnesses(mesh, &fabric.bending, kappa);
+        let kappa = calibration.unwrap_or_else(|| {
+            fabrics
+                .iter()
+                .map(|f| bending::calibration(mesh, &f.bending))
+                .collect()
+        });
+        let scaled: Vec<_> = fabrics
+            .iter()
+            .zip(&kappa)
+            .map(|(f, &k)| bending::calibrated(&f.bending, k))
+            .collect();
+        let stiffness = bending::hinge_stiffnesses_by_wing(mesh, |t| &scaled[fabric_of(t)]);
         let hinges: Vec<HingeElement> = mesh
             .hinges()
             .iter()
             .zip(&stiffness)
             .map(|(h, &k)| {
                 let v = [h.edge[0], h.edge[1], h.opposite[0], h.opposite[1]];
+                let [a, b] = h.triangles.map(|t| &fabrics[fabric_of(t)]);
                 HingeElement {
                     v: v.map(|i| i as u32),
                     stiffness: k,
+                    law: a.bending_law,
+                    damping: 0.5 * (a.damping + b.damping),
                     wing_areas: h.triangles.map(|t| mesh.rest_area(t)),
                     slots: slots(&v).try_into().expect("16 slots"),
                 }
@@ -158,17 +188,19 @@ impl ForceModel {
         let (hinges, hinge_colors) = color(hinges, n, |e| &e.v);
         let (seams, seam_colors) = color(seams, n, |e| &e.v);
 
-        let mut vertex_area = vec![0.0; n];
+        let (mut masses, mut vertex_drag) = (vec![0.0; n], vec![0.0; n]);
         for e in &tris {
+            let f = &fabrics[e.fabric as usize];
             for &i in &e.v {
-                vertex_area[i as usize] += e.rest.area / 3.0;
+                masses[i as usize] += f.area_density * e.rest.area / 3.0;
+                vertex_drag[i as usize] += f.drag * e.rest.area / 3.0;
             }
         }
-        let masses = vertex_area.iter().map(|a| a * fabric.area_density).collect();
         let model = Self {
             tri_energy: vec![0.0; tris.len()],
             hinge_energy: vec![0.0; hinges.len()],
-            fabric,
+            seam_damping: fabrics.iter().map(|f| f.damping).fold(0.0, f64::max),
+            fabrics,
             tris,
             tri_colors,
             hinges,
@@ -178,14 +210,30 @@ impl ForceModel {
             seam_colors,
             seam_pull: SeamPull::default(),
             masses,
-            vertex_area,
+            vertex_drag,
             bending_calibration: kappa,
         };
         (model, matrix)
     }
 
+    /// The first fabric (the only one unless triangles name others).
     pub fn fabric(&self) -> &Fabric {
-        &self.fabric
+        &self.fabrics[0]
+    }
+    pub fn fabrics(&self) -> &[Fabric] {
+        &self.fabrics
+    }
+    /// The fabric of each particle: that of the first triangle using it.
+    pub fn particle_fabrics(&self) -> Vec<usize> {
+        let mut of = vec![usize::MAX; self.masses.len()];
+        for e in &self.tris {
+            for &i in &e.v {
+                if of[i as usize] == usize::MAX {
+                    of[i as usize] = e.fabric as usize;
+                }
+            }
+        }
+        of
     }
 
     /// Stiffens the hinges along a clamp (see [`bending::clamp_factor`]).
@@ -208,16 +256,18 @@ impl ForceModel {
     pub fn mass_norm(&self) -> f64 {
         (3.0 * self.masses.iter().map(|m| m * m).sum::<f64>()).sqrt()
     }
-    pub fn bending_calibration(&self) -> [f64; 2] {
-        self.bending_calibration
+    /// Each fabric's bending calibration factors.
+    pub fn bending_calibration(&self) -> &[[f64; 2]] {
+        &self.bending_calibration
     }
     /// The drag Jacobian's scalar `c A_i` of particle `i` (`dF/dv = -c A_i I`).
     pub fn drag_coefficient(&self, i: usize) -> f64 {
-        self.fabric.drag * self.vertex_area[i]
+        self.vertex_drag[i]
     }
 
     /// Forces at `(x, v)` into `force` (elastic, damping, gravity, drag), `K v` into `hv`
-    /// when damping or a stiffness target needs it, and `scale K` into the target's matrix.
+    /// when damping or a stiffness target needs it, and `(h^2 + h beta) K` into the
+    /// target's matrix.
     /// Returns the potential energy (elastic + gravitational).
     #[allow(clippy::too_many_arguments)]
     pub fn evaluate(
@@ -231,18 +281,17 @@ impl ForceModel {
         mut stiffness: Option<StiffnessTarget<'_>>,
         parallel: bool,
     ) -> f64 {
-        let beta = self.fabric.damping;
-        let need_k = stiffness.is_some() || beta > 0.0;
+        let need_k = stiffness.is_some() || self.fabrics.iter().any(|f| f.damping > 0.0);
         let mode = if need_k {
             HessianMode::Projected
         } else {
             HessianMode::None
         };
-        let (masses, area, drag) = (&self.masses, &self.vertex_area, self.fabric.drag);
+        let (masses, drag) = (&self.masses, &self.vertex_drag);
         let init = |(i, (f, h)): (usize, (&mut Vec3, &mut Vec3))| {
             *f = masses[i] * gravity;
-            if drag > 0.0 {
-                *f += particle::drag(drag, area[i], &v[i], wind).0;
+            if drag[i] > 0.0 {
+                *f += particle::drag(drag[i], 1.0, &v[i], wind).0;
             }
             *h = Vec3::zeros();
         };
@@ -258,37 +307,58 @@ impl ForceModel {
 
         let fshare = Shared(force.as_mut_ptr());
         let hshare = Shared(hv.as_mut_ptr());
-        let scale = stiffness.as_ref().map_or(0.0, |s| s.scale);
+        let h = stiffness.as_ref().map_or(0.0, |s| s.h);
+        let scale = |beta: f64| h * h + h * beta;
         let mshare = stiffness
             .as_mut()
             .map(|s| Shared(s.matrix.blocks_mut().as_mut_ptr()));
-        let fabric = &self.fabric;
-        let [warp, weft] = ThreadLaw::of(fabric);
+        let fabrics = &self.fabrics;
 
         let tri_kernel = |e: &TriElement, energy: &mut f64| {
+            let fabric = &fabrics[e.fabric as usize];
+            let [warp, weft] = ThreadLaw::of(fabric);
             let xe = e.v.map(|i| x[i as usize]);
             let mut local = Local::<3>::default();
             add_stretch(&e.rest, warp, weft, &xe, mode, &mut local);
             add_shear(&e.rest, fabric.shear_modulus, &xe, mode, &mut local);
             *energy = local.energy;
+            let beta = fabric.damping;
             // SAFETY: elements of one colour share no vertex, so no two threads write
             // the same particle or the same matrix row.
             unsafe {
                 scatter(
-                    &local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale,
+                    &local,
+                    &e.v,
+                    &e.slots,
+                    v,
+                    beta,
+                    need_k,
+                    fshare,
+                    hshare,
+                    mshare,
+                    scale(beta),
                 )
             };
         };
-        let law = fabric.bending_law;
         let hinge_kernel = |e: &HingeElement, energy: &mut f64| {
             let xe = e.v.map(|i| x[i as usize]);
             let mut local = Local::<4>::default();
-            bending::add_bending(law, e.stiffness, &xe, mode, &mut local);
+            bending::add_bending(e.law, e.stiffness, &xe, mode, &mut local);
             *energy = local.energy;
+            let beta = e.damping;
             // SAFETY: as above.
             unsafe {
                 scatter(
-                    &local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale,
+                    &local,
+                    &e.v,
+                    &e.slots,
+                    v,
+                    beta,
+                    need_k,
+                    fshare,
+                    hshare,
+                    mshare,
+                    scale(beta),
                 )
             };
         };
@@ -308,6 +378,7 @@ impl ForceModel {
         );
         let pull = self.seam_pull;
         if pull.stiffness > 0.0 {
+            let beta = self.seam_damping;
             let seam_kernel = |e: &SeamElement, energy: &mut f64| {
                 let mut local = Local::<2>::default();
                 add_seam_pull(pull, [x[e.v[0] as usize], x[e.v[1] as usize]], need_k, &mut local);
@@ -315,7 +386,16 @@ impl ForceModel {
                 // SAFETY: as above.
                 unsafe {
                     scatter(
-                        &local, &e.v, &e.slots, v, beta, need_k, fshare, hshare, mshare, scale,
+                        &local,
+                        &e.v,
+                        &e.slots,
+                        v,
+                        beta,
+                        need_k,
+                        fshare,
+                        hshare,
+                        mshare,
+                        scale(beta),
                     )
                 };
             };
@@ -349,13 +429,20 @@ impl ForceModel {
 /// step would then meet a constant force as explicitly as forward Euler and carry the
 /// pair far past closing (by about `k r h^2 / m`), where the secant sees it coming.
 pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, out: &mut Local<2>) {
-    let SeamPull { stiffness: k, reach: r } = pull;
+    let SeamPull {
+        stiffness: k,
+        reach: r,
+    } = pull;
     let gap = x[0] - x[1];
     let d = gap.norm();
     let (energy, grad, hess) = if d <= r {
         (0.5 * k * d * d, k * gap, Mat3::identity() * k)
     } else {
-        (k * r * (d - 0.5 * r), gap * (k * r / d), Mat3::identity() * (k * r / d))
+        (
+            k * r * (d - 0.5 * r),
+            gap * (k * r / d),
+            Mat3::identity() * (k * r / d),
+        )
     };
     out.energy += energy;
     out.grad[0] += grad;
@@ -482,7 +569,7 @@ mod tests {
             exponent: 2.0,
         };
         // One seam pair within the pull's reach and two beyond it, sharing a particle.
-        let (mut model, matrix) = ForceModel::new(&mesh, fabric, &SEAMS, None);
+        let (mut model, matrix) = ForceModel::new(&mesh, vec![fabric], &[], &SEAMS, None);
         model.set_seam_pull(SeamPull {
             stiffness: 50.0,
             reach: 0.05,
@@ -508,7 +595,10 @@ mod tests {
             reach: 0.04,
         };
         // Gaps inside and beyond the reach.
-        for (gap, exact) in [(Vec3::new(0.01, -0.02, 0.005), true), (Vec3::new(0.05, 0.03, -0.02), false)] {
+        for (gap, exact) in [
+            (Vec3::new(0.01, -0.02, 0.005), true),
+            (Vec3::new(0.05, 0.03, -0.02), false),
+        ] {
             let x = [Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.1, 0.2, 0.3) - gap];
             let eval = |x: [Vec3; 2]| {
                 let mut l = Local::<2>::default();
@@ -524,17 +614,27 @@ mod tests {
                     xm[i][d] -= h;
                     let (lp, lm) = (eval(xp), eval(xm));
                     let fd = (lp.energy - lm.energy) / (2.0 * h);
-                    assert!((fd - l.grad[i][d]).abs() < 1e-7, "grad {i}{d}: {fd} vs {}", l.grad[i][d]);
+                    assert!(
+                        (fd - l.grad[i][d]).abs() < 1e-7,
+                        "grad {i}{d}: {fd} vs {}",
+                        l.grad[i][d]
+                    );
                     for j in 0..2 {
                         let fd_col = (lp.grad[j] - lm.grad[j]) / (2.0 * h);
                         let col = l.hess[j][i].column(d).clone_owned();
                         if exact {
-                            assert!((fd_col - col).norm() < 1e-6, "hess {j}{i} col {d}: {fd_col} vs {col}");
+                            assert!(
+                                (fd_col - col).norm() < 1e-6,
+                                "hess {j}{i} col {d}: {fd_col} vs {col}"
+                            );
                         } else {
                             // Beyond the reach: the exact Hessian across the gap, the secant along it.
                             let n = gap.normalize();
                             let across = |c: Vec3| c - n * n.dot(&c);
-                            assert!((across(fd_col) - across(col)).norm() < 1e-6, "hess {j}{i} col {d}");
+                            assert!(
+                                (across(fd_col) - across(col)).norm() < 1e-6,
+                                "hess {j}{i} col {d}"
+                            );
                         }
                     }
                 }
@@ -595,7 +695,7 @@ mod tests {
             &mut hv,
             Some(StiffnessTarget {
                 matrix: &mut matrix,
-                scale: 1.0,
+                h: 1.0,
             }),
             true,
         );
@@ -660,7 +760,8 @@ mod tests {
             add_seam_pull(model.seam_pull(), pair.map(|i| x[i]), true, &mut l);
             add(&pair, &l.hessian_dense());
         }
-        let assembled = matrix.to_dense();
+        // The target holds (h^2 + h beta) K, here with h = 1.
+        let assembled = matrix.to_dense() / (1.0 + fab.damping);
         let scale = dense.amax();
         assert!(
             (&assembled - &dense).amax() <= 1e-12 * scale,
@@ -678,7 +779,7 @@ mod tests {
         let mut kv = vec![Vec3::zeros(); n];
         matrix.mul(&v, &mut kv, false);
         for (a, b) in kv.iter().zip(&hv) {
-            assert!((a - b).norm() <= 1e-10 * scale);
+            assert!((a / (1.0 + fab.damping) - b).norm() <= 1e-10 * scale);
         }
     }
 
@@ -686,7 +787,7 @@ mod tests {
     fn internal_forces_have_no_net_force_or_torque() {
         let (_, mut model, _, x, v) = setup();
         let n = x.len();
-        model.fabric.drag = 0.0; // drag is an external force
+        model.vertex_drag.iter_mut().for_each(|d| *d = 0.0); // drag is an external force
         let zero = Vec3::zeros();
         // Elastic forces at rest velocity: no net force, no net torque.
         let mut f = vec![zero; n];

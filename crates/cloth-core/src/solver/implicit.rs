@@ -33,10 +33,9 @@ impl Simulation {
             self.matrix.reset(s.parallel, |i| {
                 Mat3::from_diagonal_element(model.masses()[i] + h * model.drag_coefficient(i))
             });
-            let beta = self.model.fabric().damping;
             Some(StiffnessTarget {
                 matrix: &mut self.matrix,
-                scale: h * h + h * beta,
+                h,
             })
         } else {
             None

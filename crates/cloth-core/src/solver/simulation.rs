@@ -15,20 +15,22 @@ use std::time::Instant;
 #[derive(Debug, Clone)]
 pub struct SimulationBuilder {
     mesh: ClothMesh,
-    fabric: Fabric,
+    fabrics: Vec<Fabric>,
+    triangle_fabric: Vec<usize>,
     settings: SolverSettings,
     pins: Vec<Pin>,
     velocities: Option<Vec<Vec3>>,
     collider: Option<Arc<dyn Collider>>,
     seams: Vec<[usize; 2]>,
-    bending_calibration: Option<[f64; 2]>,
+    bending_calibration: Option<Vec<[f64; 2]>>,
 }
 
 impl SimulationBuilder {
     pub fn new(mesh: ClothMesh, fabric: Fabric) -> Self {
         Self {
             mesh,
-            fabric,
+            fabrics: vec![fabric],
+            triangle_fabric: Vec::new(),
             settings: SolverSettings::default(),
             pins: Vec::new(),
             velocities: None,
@@ -68,10 +70,17 @@ impl SimulationBuilder {
         self.seams = pairs;
         self
     }
-    /// Uses these bending calibration factors instead of computing them (see
-    /// [`crate::energy::bending::calibration`]): a garment keeps its panels' factors
-    /// when its seams are welded.
-    pub fn bending_calibration(mut self, kappa: [f64; 2]) -> Self {
+    /// Cloth of several fabrics (a garment's panels): triangle `t` is of
+    /// `fabrics[triangle_fabric[t]]`. Replaces the fabric given to [`new`](Self::new).
+    pub fn fabrics(mut self, fabrics: Vec<Fabric>, triangle_fabric: Vec<usize>) -> Self {
+        self.fabrics = fabrics;
+        self.triangle_fabric = triangle_fabric;
+        self
+    }
+    /// Uses these bending calibration factors, one pair per fabric, instead of computing
+    /// them (see [`crate::energy::bending::calibration`]): a garment keeps its panels'
+    /// factors when its seams are welded.
+    pub fn bending_calibration(mut self, kappa: Vec<[f64; 2]>) -> Self {
         self.bending_calibration = Some(kappa);
         self
     }
@@ -84,7 +93,31 @@ impl SimulationBuilder {
     /// Validates the fabric, settings and pins, then builds the model, the matrix
     /// pattern and every buffer a step needs.
     pub fn build(self) -> Result<Simulation, ParamError> {
-        self.fabric.validate()?;
+        if self.fabrics.is_empty() {
+            return Err(ParamError::OutOfRange {
+                name: "fabrics",
+                value: 0.0,
+                expected: "at least one fabric",
+            });
+        }
+        for f in &self.fabrics {
+            f.validate()?;
+        }
+        let triangles = self.mesh.triangles().len();
+        if !self.triangle_fabric.is_empty() && self.triangle_fabric.len() != triangles {
+            return Err(ParamError::OutOfRange {
+                name: "triangle_fabric",
+                value: self.triangle_fabric.len() as f64,
+                expected: "one fabric index per triangle",
+            });
+        }
+        if let Some(&k) = self.triangle_fabric.iter().find(|&&k| k >= self.fabrics.len()) {
+            return Err(ParamError::OutOfRange {
+                name: "triangle_fabric",
+                value: k as f64,
+                expected: "indices of the fabrics given",
+            });
+        }
         self.settings.validate()?;
         let n = self.mesh.vertex_count();
         let x: Vec<Vec3> = self.mesh.positions().to_vec();
@@ -143,20 +176,38 @@ impl SimulationBuilder {
                 expected: "pairs of two different particles of the mesh",
             });
         }
-        if let Some(kappa) = self.bending_calibration {
+        if let Some(kappa) = &self.bending_calibration {
             ParamError::check(
-                kappa.iter().all(|k| k.is_finite() && *k > 0.0),
+                kappa.len() == self.fabrics.len(),
                 "bending_calibration",
-                kappa[0].min(kappa[1]),
+                kappa.len() as f64,
+                "one pair of factors per fabric",
+            )?;
+            let smallest = kappa.iter().flatten().copied().fold(f64::INFINITY, f64::min);
+            ParamError::check(
+                kappa.iter().flatten().all(|k| k.is_finite() && *k > 0.0),
+                "bending_calibration",
+                smallest,
                 "positive finite factors",
             )?;
         }
-        let (mut model, matrix) = ForceModel::new(&self.mesh, self.fabric, &self.seams, self.bending_calibration);
+        let (mut model, matrix) = ForceModel::new(
+            &self.mesh,
+            self.fabrics,
+            &self.triangle_fabric,
+            &self.seams,
+            self.bending_calibration,
+        );
         model.clamp_hinges(&pinned);
         let contacts = self.collider.map(|collider| {
-            let fabric = model.fabric();
-            let stiffness = 10.0 * fabric.membrane_stiffness();
-            let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness, fabric.friction);
+            let fabrics = model.fabrics();
+            let stiffness = 10.0 * fabrics.iter().map(Fabric::membrane_stiffness).fold(0.0, f64::max);
+            let friction = model
+                .particle_fabrics()
+                .iter()
+                .map(|&f| fabrics[f].friction)
+                .collect();
+            let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness, friction);
             c.particles
                 .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
             c
@@ -235,8 +286,12 @@ impl Simulation {
     pub fn mesh(&self) -> &ClothMesh {
         &self.mesh
     }
+    /// The fabric (the first, when triangles are of several).
     pub fn fabric(&self) -> &Fabric {
         self.model.fabric()
+    }
+    pub fn fabrics(&self) -> &[Fabric] {
+        self.model.fabrics()
     }
     pub fn settings(&self) -> &SolverSettings {
         &self.settings
@@ -261,8 +316,8 @@ impl Simulation {
         self.steps
     }
     /// The factors scaling the warp and weft bending rigidities into hinge stiffnesses
-    /// (see [`crate::energy::bending::calibration`]).
-    pub fn bending_calibration(&self) -> [f64; 2] {
+    /// (see [`crate::energy::bending::calibration`]), one pair per fabric.
+    pub fn bending_calibration(&self) -> &[[f64; 2]] {
         self.model.bending_calibration()
     }
     /// How hard the seams given to the builder pull (zero: not at all).

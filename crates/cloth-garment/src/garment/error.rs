@@ -29,15 +29,6 @@ pub enum GarmentError {
     },
     #[error(transparent)]
     Param(#[from] ParamError),
-    /// Panels of one garment name different fabrics: the solver holds one fabric per
-    /// cloth for now.
-    #[error("panel '{first}' is of '{first_fabric}' but panel '{other}' of '{other_fabric}': one fabric per garment is supported")]
-    MixedFabrics {
-        first: String,
-        first_fabric: String,
-        other: String,
-        other_fabric: String,
-    },
     /// Welding would fold a triangle onto itself: two of its corners are sewn together.
     #[error("welding the seams collapses triangle {triangle} of panel '{panel}': two of its corners are sewn together")]
     Collapse { triangle: usize, panel: String },

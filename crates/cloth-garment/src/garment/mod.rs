@@ -178,29 +178,6 @@ impl GarmentBuilder {
 }
 
 impl Garment {
-    /// The fabric preset the panels name (`None` when none does, so the caller's choice
-    /// stands). Panels naming different fabrics are an error: the solver holds one fabric
-    /// per cloth.
-    pub fn fabric_name(&self) -> Result<Option<&str>, GarmentError> {
-        let mut named = self
-            .panel_fabrics
-            .iter()
-            .zip(&self.panel_names)
-            .filter_map(|(f, p)| f.as_deref().map(|f| (f, p)));
-        let Some((first_fabric, first)) = named.next() else {
-            return Ok(None);
-        };
-        match named.find(|(f, _)| *f != first_fabric) {
-            Some((other_fabric, other)) => Err(GarmentError::MixedFabrics {
-                first: first.clone(),
-                first_fabric: first_fabric.into(),
-                other: other.clone(),
-                other_fabric: other_fabric.into(),
-            }),
-            None => Ok(Some(first_fabric)),
-        }
-    }
-
     /// Every seam's vertex pairs in one list.
     pub fn seam_pairs(&self) -> Vec<[usize; 2]> {
         self.seams.iter().flat_map(|s| s.pairs.iter().copied()).collect()

@@ -51,7 +51,10 @@ impl Garment {
             .iter()
             .map(|t| t.map(|i| particle_of[i]))
             .collect();
-        if let Some(t) = triangles.iter().position(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+        if let Some(t) = triangles
+            .iter()
+            .position(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+        {
             return Err(GarmentError::Collapse {
                 triangle: t,
                 panel: self.panel_names[self.triangle_panel[t]].clone(),

@@ -156,7 +156,10 @@ pub fn mesh_region(
     }
     let mut loop_vertices = Vec::with_capacity(handles.len());
     for (l, h) in handles.iter().enumerate() {
-        let ids = h.iter().map(|v| index.get(v).copied()).collect::<Option<Vec<usize>>>();
+        let ids = h
+            .iter()
+            .map(|v| index.get(v).copied())
+            .collect::<Option<Vec<usize>>>();
         // A boundary point no kept triangle uses: the loop lies outside the region.
         let ids = ids.ok_or(MeshingError::SelfIntersecting {
             edge: handles[..l].iter().map(Vec::len).sum(),
@@ -192,7 +195,10 @@ fn bow_straight_runs(points: &[Vector2<f64>], outer: bool) -> Vec<Vector2<f64>> 
     };
     let mut k = first_corner;
     for _ in 0..n {
-        let next = (1..=n).map(|j| k + j).find(|&j| !straight(j % n)).unwrap_or(k + n);
+        let next = (1..=n)
+            .map(|j| k + j)
+            .find(|&j| !straight(j % n))
+            .unwrap_or(k + n);
         if next > k + 1 {
             let (a, b) = (at(k), at(next));
             let chord = b - a;

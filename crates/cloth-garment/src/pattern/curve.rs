@@ -12,12 +12,20 @@ const LENGTH_SEGMENTS: usize = 512;
 pub enum Curve {
     Line,
     /// Quadratic Bezier with one control point.
-    Quadratic { control: Point2 },
+    Quadratic {
+        control: Point2,
+    },
     /// Cubic Bezier with two control points.
-    Cubic { control: [Point2; 2] },
+    Cubic {
+        control: [Point2; 2],
+    },
     /// Circular arc of `radius` (at least half the chord). `large` picks the longer of the
     /// two arcs through the ends; `ccw` says it turns counter-clockwise from start to end.
-    Arc { radius: f64, large: bool, ccw: bool },
+    Arc {
+        radius: f64,
+        large: bool,
+        ccw: bool,
+    },
 }
 
 impl Curve {
@@ -123,7 +131,11 @@ impl Curve {
                     let target = f * total;
                     let k = acc.partition_point(|&s| s < target).clamp(1, LENGTH_SEGMENTS);
                     let span = acc[k] - acc[k - 1];
-                    let within = if span > 0.0 { (target - acc[k - 1]) / span } else { 0.0 };
+                    let within = if span > 0.0 {
+                        (target - acc[k - 1]) / span
+                    } else {
+                        0.0
+                    };
                     (k as f64 - 1.0 + within) / LENGTH_SEGMENTS as f64
                 })
             }

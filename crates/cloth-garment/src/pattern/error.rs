@@ -23,7 +23,11 @@ pub enum PatternError {
     },
     /// Something wrong in one seam (numbered from 0 in file order).
     #[error("{file}: seam {seam}: {reason}")]
-    Seam { file: String, seam: usize, reason: String },
+    Seam {
+        file: String,
+        seam: usize,
+        reason: String,
+    },
     #[error("{file}: {reason}")]
     Pattern { file: String, reason: String },
 }

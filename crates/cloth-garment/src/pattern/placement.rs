@@ -51,11 +51,7 @@ impl Placement {
         let local = match self.wrap {
             Some(Wrap { radius, centre }) => {
                 let angle = (p.x - centre) / radius;
-                Vec3::new(
-                    centre + radius * angle.sin(),
-                    p.y,
-                    -radius * (1.0 - angle.cos()),
-                )
+                Vec3::new(centre + radius * angle.sin(), p.y, -radius * (1.0 - angle.cos()))
             }
             None => Vec3::new(p.x, p.y, 0.0),
         };

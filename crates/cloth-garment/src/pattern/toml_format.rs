@@ -23,7 +23,9 @@
 //! orientation = "opposite"            # or "same", or "auto"
 //! ```
 
-use super::{Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam, SeamOrientation, SeamSide, Wrap};
+use super::{
+    Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam, SeamOrientation, SeamSide, Wrap,
+};
 use cloth_core::Vec3;
 use serde::Deserialize;
 use std::path::Path;
@@ -207,7 +209,8 @@ impl Pattern {
         let mut panels = Vec::with_capacity(record.panels.len());
         for p in &record.panels {
             let pl = &p.placement;
-            let mut placement = Placement::from_euler_degrees(pl.rotation, Vec3::from(pl.translation) * scale);
+            let mut placement =
+                Placement::from_euler_degrees(pl.rotation, Vec3::from(pl.translation) * scale);
             placement.wrap = pl.wrap.as_ref().map(|w| Wrap {
                 radius: w.radius * scale,
                 centre: w.centre * scale,
@@ -215,7 +218,11 @@ impl Pattern {
             panels.push(Panel {
                 name: p.name.clone(),
                 outline: edges(&p.outline, &p.name)?,
-                holes: p.holes.iter().map(|h| edges(h, &p.name)).collect::<Result<_, _>>()?,
+                holes: p
+                    .holes
+                    .iter()
+                    .map(|h| edges(h, &p.name))
+                    .collect::<Result<_, _>>()?,
                 grain: Point2::new(p.grain[0], p.grain[1]),
                 fabric: p.fabric.clone(),
                 placement,

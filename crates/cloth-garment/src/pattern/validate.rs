@@ -33,7 +33,8 @@ impl Pattern {
                     "two panels have this name",
                 ));
             }
-            let fail = |edge: Option<String>, reason: String| PatternError::panel(file, &panel.name, edge, reason);
+            let fail =
+                |edge: Option<String>, reason: String| PatternError::panel(file, &panel.name, edge, reason);
             let name_of = |loop_name: &str, k: usize, e: &Edge| match &e.name {
                 Some(n) => format!("'{n}' ({loop_name}{k})"),
                 None => format!("{loop_name}{k}"),
@@ -47,14 +48,21 @@ impl Pattern {
             }
             if let Some(w) = p.wrap {
                 if !(w.radius.is_finite() && w.radius > 0.0 && w.centre.is_finite()) {
-                    return Err(fail(None, format!("wrap radius {} must be positive and finite", w.radius)));
+                    return Err(fail(
+                        None,
+                        format!("wrap radius {} must be positive and finite", w.radius),
+                    ));
                 }
             }
-            let loops = std::iter::once(("", &panel.outline)).chain(panel.holes.iter().map(|h| ("hole edge ", h)));
+            let loops =
+                std::iter::once(("", &panel.outline)).chain(panel.holes.iter().map(|h| ("hole edge ", h)));
             let mut polylines = Vec::new();
             for (loop_name, edges) in loops {
                 if edges.len() < 2 {
-                    return Err(fail(None, format!("a loop of {} edge(s) encloses nothing", edges.len())));
+                    return Err(fail(
+                        None,
+                        format!("a loop of {} edge(s) encloses nothing", edges.len()),
+                    ));
                 }
                 for (k, e) in edges.iter().enumerate() {
                     let name = || Some(name_of(loop_name, k, e));
@@ -93,11 +101,16 @@ impl Pattern {
                 }
             }
         }
-        let mut sewn: Vec<Vec<Option<usize>>> = self.panels.iter().map(|p| vec![None; p.outline.len()]).collect();
+        let mut sewn: Vec<Vec<Option<usize>>> =
+            self.panels.iter().map(|p| vec![None; p.outline.len()]).collect();
         for (s, seam) in self.seams.iter().enumerate() {
             for side in [&seam.a, &seam.b] {
                 let Some(panel) = self.panels.get(side.panel) else {
-                    return Err(PatternError::seam(file, s, format!("panel {} does not exist", side.panel)));
+                    return Err(PatternError::seam(
+                        file,
+                        s,
+                        format!("panel {} does not exist", side.panel),
+                    ));
                 };
                 if side.edge >= panel.outline.len() {
                     return Err(PatternError::seam(
@@ -170,14 +183,7 @@ fn crossing(line: &[(Point2, usize)]) -> Option<(usize, usize)> {
 
 fn crosses(a: &[(Point2, usize)], b: &[(Point2, usize)]) -> bool {
     (0..a.len()).any(|i| {
-        (0..b.len()).any(|j| {
-            segments_meet(
-                a[i].0,
-                a[(i + 1) % a.len()].0,
-                b[j].0,
-                b[(j + 1) % b.len()].0,
-            )
-        })
+        (0..b.len()).any(|j| segments_meet(a[i].0, a[(i + 1) % a.len()].0, b[j].0, b[(j + 1) % b.len()].0))
     })
 }
 
@@ -189,11 +195,17 @@ fn cross(o: Point2, a: Point2, b: Point2) -> f64 {
 fn segments_meet(a: Point2, b: Point2, c: Point2, d: Point2) -> bool {
     let (d1, d2) = (cross(c, d, a), cross(c, d, b));
     let (d3, d4) = (cross(a, b, c), cross(a, b, d));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
         return true;
     }
     let on = |p: Point2, q: Point2, r: Point2, side: f64| {
-        side == 0.0 && r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
+        side == 0.0
+            && r.x >= p.x.min(q.x)
+            && r.x <= p.x.max(q.x)
+            && r.y >= p.y.min(q.y)
+            && r.y <= p.y.max(q.y)
     };
     on(c, d, a, d1) || on(c, d, b, d2) || on(a, b, c, d3) || on(a, b, d, d4)
 }

@@ -6,7 +6,9 @@ mod settings;
 pub use settings::{DrapeSettings, SewingSettings};
 
 use crate::garment::{Garment, GarmentError, Welded};
-use cloth_core::{Collider, Fabric, Integrator, RestCriteria, RestOutcome, SeamPull, Simulation, SimulationBuilder};
+use cloth_core::{
+    Collider, Fabric, Integrator, RestCriteria, RestOutcome, SeamPull, Simulation, SimulationBuilder,
+};
 use cloth_core::{SolverSettings, StepStats, Vec3};
 use std::sync::Arc;
 use std::time::Instant;
@@ -27,33 +29,59 @@ pub struct SewingReport {
 #[derive(Debug, Clone)]
 pub struct Sewn {
     pub welded: Welded,
+    /// The garment's distinct fabrics, and which one each triangle is of.
+    pub fabrics: Vec<Fabric>,
+    pub triangle_fabric: Vec<usize>,
     pub report: SewingReport,
     /// Bending calibration of the panels, kept for the drape.
-    pub bending_calibration: [f64; 2],
+    pub bending_calibration: Vec<[f64; 2]>,
 }
 
-/// Sews `garment` of `fabric` (the one its panels name, if they do: see
-/// [`Garment::fabric_name`]) around the bodies of `collider`: gravity off, the implicit
-/// integrator, a seam pull ramped up over [`SewingSettings::ramp_time`] to a force that
-/// stretches the cloth by at most [`SewingSettings::pull_strain`], and extra air drag so
-/// panels glide into place. Stops when every seam gap is under the tolerance, then welds.
-/// `observe` sees every step (with the widest gap, m).
+/// Sews `garment`, each panel of its fabric in `panel_fabrics`, around the bodies of
+/// `collider`: gravity off, the implicit integrator, a seam pull ramped up over
+/// [`SewingSettings::ramp_time`] to a force that stretches the cloth by at most
+/// [`SewingSettings::pull_strain`], and extra air drag so panels glide into place. Stops
+/// when every seam gap is under the tolerance, then welds. `observe` sees every step (with
+/// the widest gap, m).
 pub fn sew(
     garment: &Garment,
-    fabric: &Fabric,
+    panel_fabrics: &[Fabric],
     collider: Arc<dyn Collider>,
     settings: &SewingSettings,
     mut observe: impl FnMut(&Simulation, &StepStats, f64),
 ) -> Result<Sewn, GarmentError> {
     settings.validate()?;
-    garment.fabric_name()?;
+    if panel_fabrics.len() != garment.panel_names.len() {
+        return Err(GarmentError::Parameter {
+            name: "panel_fabrics",
+            value: panel_fabrics.len() as f64,
+            expected: "one fabric per panel",
+        });
+    }
     let start = Instant::now();
+    // Panels of one fabric share it, so its bending calibration is computed once.
+    let mut fabrics: Vec<Fabric> = Vec::new();
+    let panel_material: Vec<usize> = panel_fabrics
+        .iter()
+        .map(|f| match fabrics.iter().position(|g| g == f) {
+            Some(k) => k,
+            None => {
+                fabrics.push(f.clone());
+                fabrics.len() - 1
+            }
+        })
+        .collect();
+    let triangle_fabric: Vec<usize> = garment
+        .triangle_panel
+        .iter()
+        .map(|&p| panel_material[p])
+        .collect();
     // Friction on the body would hold seams apart where the panels press on it; the
-    // drape afterwards has the fabric's own.
-    let sewing_fabric = fabric
-        .clone()
-        .with_drag(fabric.drag.max(settings.drag))
-        .with_friction(0.0);
+    // drape afterwards has the fabrics' own.
+    let sewing_fabrics = fabrics
+        .iter()
+        .map(|f| f.clone().with_drag(f.drag.max(settings.drag)).with_friction(0.0))
+        .collect();
     let solver = SolverSettings {
         integrator: Integrator::ImplicitEuler,
         time_step: settings.time_step,
@@ -61,12 +89,18 @@ pub fn sew(
         ..SolverSettings::default()
     };
     let pairs = garment.seam_pairs();
-    let mut sim = SimulationBuilder::new(garment.mesh.clone(), sewing_fabric)
+    let mut sim = SimulationBuilder::new(garment.mesh.clone(), fabrics[0].clone())
+        .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
         .seams(pairs.clone())
         .collider(collider)
         .build()?;
-    let pull = settings.pull_strain * fabric.membrane_stiffness() * seam_spacing(garment);
+    // The softest fabric sets the pull, so no panel stretches further.
+    let softest = fabrics
+        .iter()
+        .map(Fabric::membrane_stiffness)
+        .fold(f64::INFINITY, f64::min);
+    let pull = settings.pull_strain * softest * seam_spacing(garment);
     let widest = |x: &[Vec3]| {
         garment
             .seam_gaps(x)
@@ -105,6 +139,8 @@ pub fn sew(
     let welded = garment.weld(sim.positions())?;
     Ok(Sewn {
         welded,
+        fabrics,
+        triangle_fabric,
         report: SewingReport {
             steps,
             seconds: start.elapsed().as_secs_f64(),
@@ -112,7 +148,7 @@ pub fn sew(
             max_gap: gap,
             pull,
         },
-        bending_calibration: sim.bending_calibration(),
+        bending_calibration: sim.bending_calibration().to_vec(),
     })
 }
 
@@ -129,29 +165,30 @@ pub struct Draped {
 /// (gravity on, normally), ready to drape.
 pub fn drape_simulation(
     sewn: &Sewn,
-    fabric: &Fabric,
     collider: Arc<dyn Collider>,
     solver: SolverSettings,
 ) -> Result<Simulation, GarmentError> {
-    Ok(SimulationBuilder::new(sewn.welded.mesh.clone(), fabric.clone())
-        .settings(solver)
-        .bending_calibration(sewn.bending_calibration)
-        .collider(collider)
-        .build()?)
+    Ok(
+        SimulationBuilder::new(sewn.welded.mesh.clone(), sewn.fabrics[0].clone())
+            .fabrics(sewn.fabrics.clone(), sewn.triangle_fabric.clone())
+            .settings(solver)
+            .bending_calibration(sewn.bending_calibration.clone())
+            .collider(collider)
+            .build()?,
+    )
 }
 
 /// Drapes the sewn garment until at rest (the source's stopping mechanism) or the step
 /// limit. `observe` sees every step.
 pub fn drape(
     sewn: &Sewn,
-    fabric: &Fabric,
     collider: Arc<dyn Collider>,
     solver: SolverSettings,
     rest: &RestCriteria,
     mut observe: impl FnMut(&Simulation, &StepStats),
 ) -> Result<Draped, GarmentError> {
     let start = Instant::now();
-    let mut simulation = drape_simulation(sewn, fabric, collider, solver)?;
+    let mut simulation = drape_simulation(sewn, collider, solver)?;
     let mut cg = 0;
     let outcome = simulation
         .run_to_rest_with(rest, |sim, stats| {

@@ -45,7 +45,11 @@ impl SewingSettings {
             ParamError::check(value.is_finite() && value > 0.0, name, value, expected)
         };
         positive(self.time_step, "sewing.time_step", "a positive time step in s")?;
-        positive(self.gap_tolerance, "sewing.gap_tolerance", "a positive distance in m")?;
+        positive(
+            self.gap_tolerance,
+            "sewing.gap_tolerance",
+            "a positive distance in m",
+        )?;
         positive(self.pull_strain, "sewing.pull_strain", "a positive strain")?;
         positive(self.ramp_time, "sewing.ramp_time", "a positive time in s")?;
         positive(self.reach, "sewing.reach", "a positive distance in m")?;
