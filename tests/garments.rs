@@ -36,21 +36,15 @@ fn dress(pattern: &str, measurements: Measurements) -> Dressed {
         .unwrap();
     let settings = SewingSettings::default();
     let sewn = sew(&garment, &fabrics, bodies.clone(), &settings, |_, _, _| {}).unwrap();
-    let settings = DrapeSettings::default();
-    let draped = drape(
-        &sewn,
-        bodies.clone(),
-        settings.solver(),
-        &settings.rest(),
-        |_, _| {},
-    )
-    .unwrap();
+    let draped = drape(&sewn, bodies.clone(), &DrapeSettings::default(), |_, _| {}).unwrap();
     let sim = &draped.simulation;
     let (depth_inside, _) = bodies.deepest_inside(sim.time(), sim.positions());
     let strain = StrainReport::new(sim.mesh(), sim.positions());
     println!(
-        "{}: sewn in {} steps (gap {:.2} mm), at rest after {} steps; max warp {:.2} %, weft {:.2} %",
+        "{}: {} particles ({} welded), sewn in {} steps (gap {:.2} mm), at rest after {} steps; max warp {:.2} %, weft {:.2} %",
         path,
+        garment.mesh.vertex_count(),
+        sim.mesh().vertex_count(),
         sewn.report.steps,
         1e3 * sewn.report.max_gap,
         draped.outcome.steps,

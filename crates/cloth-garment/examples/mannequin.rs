@@ -29,13 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 fn summary(mannequin: &Mannequin) {
     let lm = mannequin.landmarks();
     println!("  landmarks: {lm:#?}");
-    let m = mannequin.measurements();
-    for (name, z, target) in [
-        ("bust", lm.bust_z, m.bust),
-        ("waist", lm.waist_z, m.waist),
-        ("hip", lm.hip_z, m.hip),
-        ("neck", lm.neck_z, m.neck_girth),
-    ] {
+    for (name, z, target) in mannequin.measured_girths() {
         let girth = mannequin.girth_at(z);
         println!(
             "  {name} girth at z = {z:.4}: {girth:.6} m (measurement {target} m, {:+.2e} relative)",

@@ -101,12 +101,7 @@ fn girths_match_the_measurements() {
     for m in [Measurements::default(), small(), large()] {
         let mannequin = build(&m);
         let lm = mannequin.landmarks();
-        for (name, z, target) in [
-            ("bust", lm.bust_z, m.bust),
-            ("waist", lm.waist_z, m.waist),
-            ("hip", lm.hip_z, m.hip),
-            ("neck", lm.neck_z, m.neck_girth),
-        ] {
+        for (name, z, target) in mannequin.measured_girths() {
             let girth = mannequin.girth_at(z);
             assert!(
                 relative(girth, target) < 0.005,

@@ -305,13 +305,16 @@ impl ForceModel {
             force.iter_mut().zip(hv.iter_mut()).enumerate().for_each(init);
         }
 
-        let fshare = Shared(force.as_mut_ptr());
-        let hshare = Shared(hv.as_mut_ptr());
-        let h = stiffness.as_ref().map_or(0.0, |s| s.h);
-        let scale = |beta: f64| h * h + h * beta;
-        let mshare = stiffness
-            .as_mut()
-            .map(|s| Shared(s.matrix.blocks_mut().as_mut_ptr()));
+        let sink = Sink {
+            v,
+            need_k,
+            force: Shared(force.as_mut_ptr()),
+            hv: Shared(hv.as_mut_ptr()),
+            matrix: stiffness
+                .as_mut()
+                .map(|s| Shared(s.matrix.blocks_mut().as_mut_ptr())),
+            h: stiffness.as_ref().map_or(0.0, |s| s.h),
+        };
         let fabrics = &self.fabrics;
 
         let tri_kernel = |e: &TriElement, energy: &mut f64| {
@@ -325,20 +328,7 @@ impl ForceModel {
             let beta = fabric.damping;
             // SAFETY: elements of one colour share no vertex, so no two threads write
             // the same particle or the same matrix row.
-            unsafe {
-                scatter(
-                    &local,
-                    &e.v,
-                    &e.slots,
-                    v,
-                    beta,
-                    need_k,
-                    fshare,
-                    hshare,
-                    mshare,
-                    scale(beta),
-                )
-            };
+            unsafe { sink.put(&local, &e.v, &e.slots, beta) };
         };
         let hinge_kernel = |e: &HingeElement, energy: &mut f64| {
             let xe = e.v.map(|i| x[i as usize]);
@@ -347,20 +337,7 @@ impl ForceModel {
             *energy = local.energy;
             let beta = e.damping;
             // SAFETY: as above.
-            unsafe {
-                scatter(
-                    &local,
-                    &e.v,
-                    &e.slots,
-                    v,
-                    beta,
-                    need_k,
-                    fshare,
-                    hshare,
-                    mshare,
-                    scale(beta),
-                )
-            };
+            unsafe { sink.put(&local, &e.v, &e.slots, beta) };
         };
         run_colored(
             &self.tris,
@@ -384,20 +361,7 @@ impl ForceModel {
                 add_seam_pull(pull, [x[e.v[0] as usize], x[e.v[1] as usize]], need_k, &mut local);
                 *energy = local.energy;
                 // SAFETY: as above.
-                unsafe {
-                    scatter(
-                        &local,
-                        &e.v,
-                        &e.slots,
-                        v,
-                        beta,
-                        need_k,
-                        fshare,
-                        hshare,
-                        mshare,
-                        scale(beta),
-                    )
-                };
+                unsafe { sink.put(&local, &e.v, &e.slots, beta) };
             };
             run_colored(
                 &self.seams,
@@ -455,41 +419,45 @@ pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, ou
     }
 }
 
-/// Adds one element's force (with damping), `K v` and `scale K` to the global arrays.
-///
-/// # Safety
-/// No other thread may touch the element's particles or matrix rows meanwhile.
-#[allow(clippy::too_many_arguments)]
-#[inline]
-unsafe fn scatter<const N: usize>(
-    local: &Local<N>,
-    verts: &[u32; N],
-    slots: &[u32],
-    v: &[Vec3],
-    beta: f64,
+/// Where elements add their forces, `K v` and stiffness: the global arrays, shared by
+/// the threads of one colour.
+#[derive(Clone, Copy)]
+struct Sink<'a> {
+    v: &'a [Vec3],
     need_k: bool,
     force: Shared<Vec3>,
     hv: Shared<Vec3>,
     matrix: Option<Shared<Mat3>>,
-    scale: f64,
-) {
-    let mut f: [Vec3; N] = local.grad.map(|g| -g);
-    let mut kv = [Vec3::zeros(); N];
-    if need_k {
-        let ve = verts.map(|i| v[i as usize]);
-        add_damping(beta, local, &ve, &mut f, &mut kv);
-    }
-    for k in 0..N {
-        let i = verts[k] as usize;
-        unsafe {
-            force.add(i, f[k]);
-            hv.add(i, kv[k]);
+    h: f64,
+}
+
+impl Sink<'_> {
+    /// Adds one element's force (with its Rayleigh damping `beta`), `K v` and
+    /// `(h^2 + h beta) K`.
+    ///
+    /// # Safety
+    /// No other thread may touch the element's particles or matrix rows meanwhile.
+    #[inline]
+    unsafe fn put<const N: usize>(&self, local: &Local<N>, verts: &[u32; N], slots: &[u32], beta: f64) {
+        let mut f: [Vec3; N] = local.grad.map(|g| -g);
+        let mut kv = [Vec3::zeros(); N];
+        if self.need_k {
+            let ve = verts.map(|i| self.v[i as usize]);
+            add_damping(beta, local, &ve, &mut f, &mut kv);
         }
-    }
-    if let Some(m) = matrix {
-        for r in 0..N {
-            for c in 0..N {
-                unsafe { m.add(slots[r * N + c] as usize, scale * local.hess[r][c]) };
+        for k in 0..N {
+            let i = verts[k] as usize;
+            unsafe {
+                self.force.add(i, f[k]);
+                self.hv.add(i, kv[k]);
+            }
+        }
+        if let Some(m) = self.matrix {
+            let scale = self.h * self.h + self.h * beta;
+            for r in 0..N {
+                for c in 0..N {
+                    unsafe { m.add(slots[r * N + c] as usize, scale * local.hess[r][c]) };
+                }
             }
         }
     }

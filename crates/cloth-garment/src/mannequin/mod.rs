@@ -147,6 +147,18 @@ impl Mannequin {
             .collect()
     }
 
+    /// The girths the measurements name, with the height each is taken at and its value:
+    /// (name, z, girth), for bust, waist, hip and neck.
+    pub fn measured_girths(&self) -> [(&'static str, f64, f64); 4] {
+        let (lm, m) = (&self.landmarks, &self.measurements);
+        [
+            ("bust", lm.bust_z, m.bust),
+            ("waist", lm.waist_z, m.waist),
+            ("hip", lm.hip_z, m.hip),
+            ("neck", lm.neck_z, m.neck_girth),
+        ]
+    }
+
     /// Perimeter of the torso's horizontal section at height `z` (0 outside the torso),
     /// measured on the mesh, as a tape measure would on the form.
     pub fn girth_at(&self, z: f64) -> f64 {

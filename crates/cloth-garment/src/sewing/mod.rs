@@ -6,9 +6,7 @@ mod settings;
 pub use settings::{DrapeSettings, SewingSettings};
 
 use crate::garment::{Garment, GarmentError, Welded};
-use cloth_core::{
-    Collider, Fabric, Integrator, RestCriteria, RestOutcome, SeamPull, Simulation, SimulationBuilder,
-};
+use cloth_core::{Collider, Fabric, Integrator, RestOutcome, SeamPull, Simulation, SimulationBuilder};
 use cloth_core::{SolverSettings, StepStats, Vec3};
 use std::sync::Arc;
 use std::time::Instant;
@@ -183,15 +181,15 @@ pub fn drape_simulation(
 pub fn drape(
     sewn: &Sewn,
     collider: Arc<dyn Collider>,
-    solver: SolverSettings,
-    rest: &RestCriteria,
+    settings: &DrapeSettings,
     mut observe: impl FnMut(&Simulation, &StepStats),
 ) -> Result<Draped, GarmentError> {
     let start = Instant::now();
-    let mut simulation = drape_simulation(sewn, collider, solver)?;
+    let rest = settings.rest();
+    let mut simulation = drape_simulation(sewn, collider, settings.solver())?;
     let mut cg = 0;
     let outcome = simulation
-        .run_to_rest_with(rest, |sim, stats| {
+        .run_to_rest_with(&rest, |sim, stats| {
             cg += stats.cg_iterations;
             observe(sim, stats)
         })
