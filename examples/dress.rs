@@ -181,7 +181,7 @@ fn experiment(
             time_step: h,
             ..SolverSettings::default()
         };
-        let mut sim = drape_simulation(&sewn, bodies.clone(), solver)?;
+        let mut sim = drape_simulation(&sewn, bodies.clone(), solver, 0.0)?;
         let mut times = Vec::new();
         let last = *checkpoints.last().expect("checkpoints");
         for step in 1..=last {
@@ -230,7 +230,7 @@ fn stable_explicit_step(sewn: &Sewn, bodies: &Arc<Bodies>) -> Result<f64, Box<dy
             time_step: h,
             ..SolverSettings::default()
         };
-        let mut sim = drape_simulation(sewn, bodies.clone(), solver)?;
+        let mut sim = drape_simulation(sewn, bodies.clone(), solver, 0.0)?;
         let mut reference = f64::INFINITY;
         let stable = (1..=2000).all(|step| match sim.step() {
             Ok(stats) => {

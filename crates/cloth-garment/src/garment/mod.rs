@@ -16,6 +16,8 @@ use nalgebra::Rotation2;
 
 /// The default target edge length, m: about 6,000 particles for a dress.
 pub const DEFAULT_EDGE_LENGTH: f64 = 0.015;
+/// The most a curved edge turns over one boundary segment, radians (15 degrees).
+pub const MAX_TURN: f64 = std::f64::consts::PI / 12.0;
 
 /// Turns a [`Pattern`] into a [`Garment`].
 #[derive(Debug, Clone)]
@@ -82,7 +84,14 @@ impl GarmentBuilder {
         }
         pattern.validate(&file)?;
         // Pieces per outline edge: a seam's sides share the larger count.
-        let pieces_of = |e: &Edge| ((e.length() / h).round() as usize).max(1);
+        // At the target length, or finer where the edge turns fast (a tight armhole or
+        // neckline keeps its shape on a coarse mesh); refinement's angle limit then grades
+        // the mesh from the fine boundary to the interior.
+        let pieces_of = |e: &Edge| {
+            let by_length = (e.length() / h).round() as usize;
+            let by_turn = (e.turning() / MAX_TURN).ceil() as usize;
+            by_length.max(by_turn).max(1)
+        };
         let mut pieces: Vec<Vec<usize>> = pattern
             .panels
             .iter()

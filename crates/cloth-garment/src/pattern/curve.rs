@@ -107,6 +107,26 @@ impl Curve {
         }
     }
 
+    /// How far the curve's direction turns from `a` to `b`, radians (summed, so an S
+    /// counts both bends).
+    pub fn turning(&self, a: Point2, b: Point2) -> f64 {
+        match *self {
+            Curve::Line => 0.0,
+            Curve::Arc { .. } => self.arc(a, b).map_or(0.0, |(_, _, _, sweep)| sweep.abs()),
+            _ => {
+                let p: Vec<Point2> = (0..=LENGTH_SEGMENTS)
+                    .map(|k| self.point(a, b, k as f64 / LENGTH_SEGMENTS as f64))
+                    .collect();
+                p.windows(3)
+                    .map(|w| {
+                        let (u, v) = (w[1] - w[0], w[2] - w[1]);
+                        u.perp(&v).atan2(u.dot(&v)).abs()
+                    })
+                    .sum()
+            }
+        }
+    }
+
     /// Cumulative polyline length at `t = k / LENGTH_SEGMENTS`.
     fn cumulative(&self, a: Point2, b: Point2) -> Vec<f64> {
         let mut acc = vec![0.0; LENGTH_SEGMENTS + 1];
@@ -189,6 +209,7 @@ mod tests {
             ccw: true,
         };
         assert!((major.length(a, b) - 3.0 * PI / 2.0).abs() < 1e-12);
+        assert!((major.turning(a, b) - 3.0 * PI / 2.0).abs() < 1e-12);
         // Its centre is (1, 1): the major arc bulges away from the origin.
         let h = std::f64::consts::FRAC_1_SQRT_2;
         assert!((major.point(a, b, 0.5) - p(1.0 + h, 1.0 + h)).norm() < 1e-12);
@@ -219,6 +240,9 @@ mod tests {
         };
         let len = c.length(p(1.0, 0.0), p(0.0, 1.0));
         assert!((len / (PI / 2.0) - 1.0).abs() < 3e-4, "{len}");
+        // The polyline's turning misses half a segment's worth at each end.
+        let turn = c.turning(p(1.0, 0.0), p(0.0, 1.0));
+        assert!((turn - PI / 2.0).abs() < 2.0 * PI / 2.0 / 512.0, "{turn}");
         let pts = c.resample(p(1.0, 0.0), p(0.0, 1.0), 8);
         let gaps: Vec<f64> = pts.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
         let spread = gaps.iter().cloned().fold(0.0, f64::max) / gaps.iter().cloned().fold(1.0, f64::min);

@@ -127,6 +127,10 @@ impl Edge {
     pub fn length(&self) -> f64 {
         self.curve.length(self.start, self.end)
     }
+    /// How far its direction turns, radians.
+    pub fn turning(&self) -> f64 {
+        self.curve.turning(self.start, self.end)
+    }
     /// `pieces + 1` points at equal arc-length spacing, both ends included.
     pub fn resample(&self, pieces: usize) -> Vec<Point2> {
         self.curve.resample(self.start, self.end, pieces)

@@ -160,15 +160,22 @@ pub struct Draped {
 }
 
 /// A simulation of the sewn garment on the bodies with the solver settings given
-/// (gravity on, normally), ready to drape.
+/// (gravity on, normally), ready to drape, with air drag of at least `drag`
+/// (kg/(m^2 s); 0 keeps the fabrics' own).
 pub fn drape_simulation(
     sewn: &Sewn,
     collider: Arc<dyn Collider>,
     solver: SolverSettings,
+    drag: f64,
 ) -> Result<Simulation, GarmentError> {
+    let fabrics = sewn
+        .fabrics
+        .iter()
+        .map(|f| f.clone().with_drag(f.drag.max(drag)))
+        .collect();
     Ok(
         SimulationBuilder::new(sewn.welded.mesh.clone(), sewn.fabrics[0].clone())
-            .fabrics(sewn.fabrics.clone(), sewn.triangle_fabric.clone())
+            .fabrics(fabrics, sewn.triangle_fabric.clone())
             .settings(solver)
             .bending_calibration(sewn.bending_calibration.clone())
             .collider(collider)
@@ -184,9 +191,10 @@ pub fn drape(
     settings: &DrapeSettings,
     mut observe: impl FnMut(&Simulation, &StepStats),
 ) -> Result<Draped, GarmentError> {
+    settings.validate()?;
     let start = Instant::now();
     let rest = settings.rest();
-    let mut simulation = drape_simulation(sewn, collider, settings.solver())?;
+    let mut simulation = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
     let mut cg = 0;
     let outcome = simulation
         .run_to_rest_with(&rest, |sim, stats| {

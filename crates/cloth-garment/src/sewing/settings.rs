@@ -77,6 +77,10 @@ pub struct DrapeSettings {
     pub consecutive_steps: u32,
     /// The drape stops here if not at rest.
     pub max_steps: u64,
+    /// Air drag while settling, kg/(m^2 s), where a fabric's own is lower. The presets
+    /// carry no damping, and a hanging skirt then sways for seconds; at rest drag does
+    /// nothing, so it only shortens the way there.
+    pub drag: f64,
 }
 
 impl Default for DrapeSettings {
@@ -86,11 +90,32 @@ impl Default for DrapeSettings {
             rest_speed: 6e-3,
             consecutive_steps: 10,
             max_steps: 3000,
+            drag: 0.5,
         }
     }
 }
 
 impl DrapeSettings {
+    pub fn validate(&self) -> Result<(), ParamError> {
+        ParamError::check(
+            self.time_step.is_finite() && self.time_step > 0.0,
+            "drape.time_step",
+            self.time_step,
+            "a positive time step in s",
+        )?;
+        ParamError::check(
+            self.rest_speed.is_finite() && self.rest_speed > 0.0,
+            "drape.rest_speed",
+            self.rest_speed,
+            "a positive speed in m/s",
+        )?;
+        ParamError::check(
+            self.drag.is_finite() && self.drag >= 0.0,
+            "drape.drag",
+            self.drag,
+            "a drag coefficient >= 0 kg/(m^2 s)",
+        )
+    }
     /// The solver settings: implicit Euler at the time step, gravity on, otherwise default.
     pub fn solver(&self) -> SolverSettings {
         SolverSettings {
