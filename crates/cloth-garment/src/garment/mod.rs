@@ -192,6 +192,21 @@ impl Garment {
         self.seams.iter().flat_map(|s| s.pairs.iter().copied()).collect()
     }
 
+    /// The seam with the widest gap at `positions`, and that gap, m (checked every
+    /// sewing step, so it allocates nothing).
+    pub fn widest_gap(&self, positions: &[Vec3]) -> (usize, f64) {
+        let mut widest = (0, 0.0);
+        for (s, seam) in self.seams.iter().enumerate() {
+            for &[a, b] in &seam.pairs {
+                let gap = (positions[a] - positions[b]).norm();
+                if gap > widest.1 {
+                    widest = (s, gap);
+                }
+            }
+        }
+        widest
+    }
+
     /// The widest gap of each seam at `positions`, m.
     pub fn seam_gaps(&self, positions: &[Vec3]) -> Vec<f64> {
         self.seams

@@ -99,19 +99,12 @@ pub fn sew(
         .map(Fabric::membrane_stiffness)
         .fold(f64::INFINITY, f64::min);
     let pull = settings.pull_strain * softest * seam_spacing(garment);
-    let widest = |x: &[Vec3]| {
-        garment
-            .seam_gaps(x)
-            .into_iter()
-            .enumerate()
-            .fold((0, 0.0), |best, (s, g)| if g > best.1 { (s, g) } else { best })
-    };
     let mut cg = 0;
-    let mut gap = widest(sim.positions()).1;
+    let mut gap = garment.widest_gap(sim.positions()).1;
     let mut steps = 0;
     while gap >= settings.gap_tolerance {
         if steps == settings.max_steps {
-            let (seam, gap) = widest(sim.positions());
+            let (seam, gap) = garment.widest_gap(sim.positions());
             return Err(GarmentError::NotSewn {
                 steps,
                 seam: garment.seams[seam].name.clone(),
@@ -131,7 +124,7 @@ pub fn sew(
         })?;
         steps += 1;
         cg += stats.cg_iterations;
-        gap = widest(sim.positions()).1;
+        gap = garment.widest_gap(sim.positions()).1;
         observe(&sim, &stats, gap);
     }
     let welded = garment.weld(sim.positions())?;
