@@ -292,3 +292,44 @@ outline = [
     let median = areas[areas.len() / 2];
     assert!(areas[0] < 0.1 * median, "{} vs {median}", areas[0]);
 }
+
+#[test]
+fn a_dart_is_two_edges_of_one_panel_sewn_together() {
+    // A 40 x 30 cm panel with a 4 cm wide, 10 cm deep dart cut into its top edge.
+    let text = r#"
+[[panels]]
+name = "bodice"
+outline = [
+    { start = [-20, 0] },
+    { start = [20, 0] },
+    { start = [20, 30] },
+    { start = [2, 30], name = "dart_right" },
+    { start = [0, 20], name = "dart_left" },
+    { start = [-2, 30] },
+    { start = [-20, 30] },
+]
+
+[[seams]]
+a = { panel = "bodice", edge = "dart_left" }
+b = { panel = "bodice", edge = "dart_right" }
+"#;
+    let pattern = Pattern::from_toml_str(text, "dart.toml").unwrap();
+    let garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
+    // The legs run tip-out and out-tip: sewn opposite, the tip meets itself and is dropped,
+    // so each of the legs' other points pairs with its mirror image across the dart.
+    let pairs = &garment.seams[0].pairs;
+    let x = garment.mesh.positions();
+    assert_eq!(pairs.len(), 5);
+    for &[a, b] in pairs {
+        assert!(a != b);
+        assert!(
+            (x[a].x + x[b].x).abs() < 1e-9 && (x[a].y - x[b].y).abs() < 1e-9,
+            "{} {}",
+            x[a],
+            x[b]
+        );
+    }
+    // Welded, the dart closes: no triangle collapses and the vertices are 5 fewer.
+    let welded = garment.weld(x).unwrap();
+    assert_eq!(welded.mesh.vertex_count(), garment.mesh.vertex_count() - 5);
+}
