@@ -6,6 +6,8 @@ pub use cloth_core::*;
 
 pub use cloth_garment as garment;
 pub mod obj;
+pub mod output;
 pub mod presets;
+pub mod scene_file;
 pub mod scenes;
 pub mod validation;

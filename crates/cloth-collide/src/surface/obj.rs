@@ -50,6 +50,12 @@ impl TriSurface {
     /// Writes the surface as plain OBJ ('v' and 'f' lines), e.g. to look at a body.
     pub fn write_obj(&self, path: &Path) -> std::io::Result<()> {
         let mut out = BufWriter::new(std::fs::File::create(path)?);
+        self.write_obj_to(&mut out)?;
+        out.flush()
+    }
+
+    /// The same, to any writer.
+    pub fn write_obj_to(&self, out: &mut dyn Write) -> std::io::Result<()> {
         writeln!(
             out,
             "# {} vertices, {} triangles",
@@ -63,7 +69,7 @@ impl TriSurface {
         for [a, b, c] in &self.triangles {
             writeln!(out, "f {} {} {}", a + 1, b + 1, c + 1)?;
         }
-        out.flush()
+        Ok(())
     }
 }
 

@@ -1,0 +1,137 @@
+//! The subcommands: each reads its input, calls the library, and says what happened.
+
+use crate::Failure;
+use cloth::garment::mannequin::{Mannequin, Measurements};
+use cloth::presets::FabricLibrary;
+use cloth::scene_file::SceneFile;
+use std::path::{Path, PathBuf};
+
+/// `cloth run`: prepare, simulate, write the outputs (also when the run fails, the report
+/// says why).
+pub fn run(scene_path: &Path, out: Option<PathBuf>, force: bool, quiet: bool) -> Result<(), Failure> {
+    let (scene, dir) = SceneFile::from_path(scene_path).map_err(Failure::input)?;
+    let file = scene_path.display().to_string();
+    let out = out.unwrap_or_else(|| scene_path.with_extension("out"));
+    if out.exists()
+        && !force
+        && std::fs::read_dir(&out)
+            .map(|mut d| d.next().is_some())
+            .unwrap_or(true)
+    {
+        return Err(Failure::input(format!(
+            "output folder '{}' exists and is not empty: pass --force to write into it",
+            out.display()
+        )));
+    }
+    let prepared = scene.prepare(&file, &dir).map_err(Failure::input)?;
+    for w in &prepared.warnings {
+        eprintln!("warning: {w}");
+    }
+    std::fs::create_dir_all(&out)
+        .map_err(|e| Failure::input(format!("cannot create output folder '{}': {e}", out.display())))?;
+    let bodies = prepared.bodies.clone();
+    let mut last_stage = "";
+    let result = prepared.run(&scene, |stage, stats| {
+        if !quiet && (stage != last_stage || stats.step % 50 == 0) {
+            println!(
+                "{stage}: step {}, {:.1} ms",
+                stats.step,
+                1e3 * (stats.assembly_seconds + stats.solve_seconds)
+            );
+            last_stage = stage;
+        }
+    });
+    let result = match result {
+        Ok(r) => r,
+        Err(e) if e.is_input_error() => return Err(Failure::input(e)),
+        Err(e) => {
+            // The run failed on valid input: the report says why.
+            let path = out.join("report.json");
+            let report = serde_json::json!({ "scene": scene.name, "failed": true, "error": e.to_string() });
+            let _ = cloth::obj::write_atomically(&path, |w| writeln!(w, "{report:#}"));
+            return Err(Failure::run(format!("{e} (report in {})", path.display())));
+        }
+    };
+    let written = cloth::output::write_outputs(&out, &result, &bodies, &scene.output)
+        .map_err(|e| Failure::run(format!("writing outputs to '{}': {e}", out.display())))?;
+    if !quiet {
+        let r = &result.report;
+        println!(
+            "done in {:.2} s: {} particles, max warp {:.2} %, weft {:.2} %, deepest penetration {:.1e} m",
+            r.total_seconds, r.particles, r.max_warp, r.max_weft, r.deepest_penetration
+        );
+        for p in written {
+            println!("wrote {}", p.display());
+        }
+    }
+    Ok(())
+}
+
+/// `cloth check`: everything `run` would read and build, without simulating.
+pub fn check(scene_path: &Path) -> Result<(), Failure> {
+    let (scene, dir) = SceneFile::from_path(scene_path).map_err(Failure::input)?;
+    let prepared = scene
+        .prepare(&scene_path.display().to_string(), &dir)
+        .map_err(Failure::input)?;
+    for w in &prepared.warnings {
+        eprintln!("warning: {w}");
+    }
+    let what = match &prepared.cloth {
+        cloth::scene_file::PreparedCloth::Garment { garment, .. } => format!(
+            "a garment of {} panels, {} seams, {} particles before sewing",
+            garment.panel_names.len(),
+            garment.seams.len(),
+            garment.mesh.vertex_count()
+        ),
+        cloth::scene_file::PreparedCloth::Sheet { .. } => "a sheet".to_string(),
+    };
+    println!(
+        "{}: ok: {what}, {} bodies",
+        scene_path.display(),
+        prepared.bodies.bodies().len()
+    );
+    Ok(())
+}
+
+/// `cloth fabrics [NAME]`.
+pub fn fabrics(name: Option<&str>) -> Result<(), Failure> {
+    let library = FabricLibrary::builtin();
+    match name {
+        None => {
+            for p in library.presets() {
+                println!("{:<24} {}", p.name, p.description);
+            }
+        }
+        Some(name) => {
+            let preset = library.get(name).map_err(Failure::input)?;
+            println!(
+                "{}: {}\norigin: {}",
+                preset.name, preset.description, preset.origin
+            );
+            let json = serde_json::to_string_pretty(&preset.fabric).map_err(Failure::run)?;
+            println!("SI values:\n{json}");
+            println!(
+                "membrane secant stiffness at 1 % strain: {:.1} N/m",
+                preset.fabric.membrane_stiffness()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `cloth mannequin ... -o FILE`.
+pub fn mannequin(measurements: Measurements, output: &Path) -> Result<(), Failure> {
+    let mannequin = Mannequin::new(&measurements).map_err(Failure::input)?;
+    mannequin
+        .write_obj(output)
+        .map_err(|e| Failure::run(format!("cannot write '{}': {e}", output.display())))?;
+    let lm = mannequin.landmarks();
+    println!(
+        "wrote {}: bust at {:.3} m, waist at {:.3} m, hip at {:.3} m",
+        output.display(),
+        lm.bust_z,
+        lm.waist_z,
+        lm.hip_z
+    );
+    Ok(())
+}

@@ -1,0 +1,123 @@
+//! The `cloth` command: a thin layer over the library. Exit status 0 on success, 2 when the
+//! input is at fault (a bad scene, pattern, body or fabric), 1 when a valid run fails.
+
+mod commands;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "cloth",
+    version,
+    about = "Cloth simulation: drape fabric and garments on bodies"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate a scene and write its outputs.
+    Run {
+        scene: PathBuf,
+        /// Output folder (default: the scene's name beside it, with `.out`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Write into an existing output folder.
+        #[arg(long)]
+        force: bool,
+        /// Print nothing but errors.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Parse and validate a scene, its patterns, bodies and fabrics, without simulating.
+    Check { scene: PathBuf },
+    /// List the fabric presets, or show one in SI units.
+    Fabrics { name: Option<String> },
+    /// Write a generated mannequin as OBJ.
+    Mannequin {
+        #[arg(long, default_value_t = 1.68)]
+        height: f64,
+        #[arg(long, default_value_t = 0.92)]
+        bust: f64,
+        #[arg(long, default_value_t = 0.76)]
+        waist: f64,
+        #[arg(long, default_value_t = 0.98)]
+        hip: f64,
+        #[arg(long, default_value_t = 0.40)]
+        shoulder_width: f64,
+        #[arg(long, default_value_t = 0.36)]
+        neck_girth: f64,
+        /// With arms (average proportions).
+        #[arg(long)]
+        arms: bool,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+/// A failure with the exit status it deserves.
+pub struct Failure {
+    pub message: String,
+    pub status: u8,
+}
+
+impl Failure {
+    pub fn input(message: impl std::fmt::Display) -> Self {
+        Self {
+            message: message.to_string(),
+            status: 2,
+        }
+    }
+    pub fn run(message: impl std::fmt::Display) -> Self {
+        Self {
+            message: message.to_string(),
+            status: 1,
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run {
+            scene,
+            out,
+            force,
+            quiet,
+        } => commands::run(&scene, out, force, quiet),
+        Command::Check { scene } => commands::check(&scene),
+        Command::Fabrics { name } => commands::fabrics(name.as_deref()),
+        Command::Mannequin {
+            height,
+            bust,
+            waist,
+            hip,
+            shoulder_width,
+            neck_girth,
+            arms,
+            output,
+        } => {
+            let m = cloth::garment::mannequin::Measurements {
+                height,
+                bust,
+                waist,
+                hip,
+                shoulder_width,
+                neck_girth,
+                arms: None,
+            };
+            commands::mannequin(if arms { m.with_arms() } else { m }, &output)
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("error: {}", f.message);
+            ExitCode::from(f.status)
+        }
+    }
+}

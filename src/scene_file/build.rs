@@ -1,0 +1,229 @@
+//! From a scene file to what runs: the cloth (a garment to sew or a sheet), its fabrics,
+//! and the bodies. Everything a run needs is checked here, so `cloth check` finds what
+//! `cloth run` would trip on.
+
+use super::records::{BodySpec, ClothSpec, FabricSpec, SceneFile};
+use super::SceneFileError;
+use crate::collide::{Bodies, Body, TriSurface};
+use crate::garment::mannequin::Mannequin;
+use crate::garment::{garmentcode, Garment, GarmentBuilder, Pattern, PlacementWarning};
+use crate::presets::FabricLibrary;
+use cloth_core::{Fabric, GridBuilder, Pin, SimulationBuilder, Vec3};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A scene ready to run.
+pub struct Prepared {
+    pub name: String,
+    pub cloth: PreparedCloth,
+    pub bodies: Arc<Bodies>,
+    /// Panels starting inside a body: the run goes on, the user is told the fix.
+    pub warnings: Vec<PlacementWarning>,
+}
+
+pub enum PreparedCloth {
+    /// A garment to sew and drape, each panel with its fabric.
+    Garment { garment: Garment, fabrics: Vec<Fabric> },
+    /// A sheet to run to rest.
+    Sheet { builder: SimulationBuilder },
+}
+
+impl SceneFile {
+    /// Builds the cloth, fabrics and bodies. `file` names the scene in errors and `dir`
+    /// is where its relative paths start.
+    pub fn prepare(&self, file: &str, dir: &Path) -> Result<Prepared, SceneFileError> {
+        let invalid = |key: &str, reason: String| SceneFileError::Invalid {
+            file: file.into(),
+            key: key.into(),
+            reason,
+        };
+        let param = |source| SceneFileError::Param {
+            file: file.into(),
+            source,
+        };
+        self.solver.validate().map_err(param)?;
+        self.rest.validate().map_err(param)?;
+        self.sewing.validate().map_err(param)?;
+        self.drape.validate().map_err(param)?;
+        let library = FabricLibrary::builtin();
+        let fabric = self.fabric.resolve(library).map_err(|e| match e {
+            Ok(source) => SceneFileError::Preset {
+                file: file.into(),
+                source,
+            },
+            Err(reason) => invalid("fabric", reason),
+        })?;
+        fabric.validate().map_err(param)?;
+
+        let mut bodies = Vec::with_capacity(self.bodies.len());
+        for (k, spec) in self.bodies.iter().enumerate() {
+            bodies.extend(spec.build(file, dir, k)?);
+        }
+        let bodies = Arc::new(Bodies::new(bodies));
+
+        let (cloth, warnings) = match &self.cloth {
+            ClothSpec::Garment { pattern, edge_length } => {
+                let path = dir.join(pattern);
+                let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
+                let pattern = if is_json {
+                    garmentcode::from_path(&path, &garmentcode::ImportOptions::default())?
+                } else {
+                    Pattern::from_toml_path(&path)?
+                };
+                let garment = GarmentBuilder::new(pattern)
+                    .edge_length(*edge_length)
+                    .file(path.display().to_string())
+                    .build()?;
+                let fabrics = garment
+                    .panel_fabrics
+                    .iter()
+                    .map(|name| match name {
+                        Some(name) => library.fabric(name),
+                        None => Ok(fabric.clone()),
+                    })
+                    .collect::<Result<Vec<_>, _>>()
+                    .map_err(|source| SceneFileError::Preset {
+                        file: path.display().to_string(),
+                        source,
+                    })?;
+                let warnings = garment.placement_warnings(&bodies);
+                (PreparedCloth::Garment { garment, fabrics }, warnings)
+            }
+            ClothSpec::Grid {
+                nx,
+                ny,
+                size,
+                origin,
+                u_axis,
+                v_axis,
+                pins,
+            } => {
+                let mesh = GridBuilder::new(*nx, *ny)
+                    .size(size[0], size[1])
+                    .origin(Vec3::from(*origin))
+                    .axes(Vec3::from(*u_axis), Vec3::from(*v_axis))
+                    .build()
+                    .map_err(|source| SceneFileError::Mesh {
+                        file: file.into(),
+                        source,
+                    })?;
+                let g = mesh.grid().expect("a grid builder makes a grid");
+                let mut builder = SimulationBuilder::new(mesh, fabric).settings(self.solver.clone());
+                for (k, &[i, j]) in pins.iter().enumerate() {
+                    if i >= *nx || j >= *ny {
+                        return Err(invalid(
+                            &format!("cloth.grid.pins[{k}]"),
+                            format!("[{i}, {j}] is outside the {nx} x {ny} grid"),
+                        ));
+                    }
+                    builder = builder.pin(Pin::fixed(g.index(i, j)));
+                }
+                if !bodies.bodies().is_empty() {
+                    builder = builder.collider(bodies.clone());
+                }
+                (PreparedCloth::Sheet { builder }, Vec::new())
+            }
+        };
+        Ok(Prepared {
+            name: self.name.clone(),
+            cloth,
+            bodies,
+            warnings,
+        })
+    }
+}
+
+impl FabricSpec {
+    /// The fabric: `Ok(Err(_))` carries a preset lookup error, `Err(_)` a form error.
+    fn resolve(
+        &self,
+        library: &FabricLibrary,
+    ) -> Result<Fabric, Result<crate::presets::PresetError, String>> {
+        match (&self.preset, &self.si, &self.kes) {
+            (Some(name), None, None) => library.fabric(name).map_err(Ok),
+            (None, Some(si), None) => Ok(si.clone()),
+            (None, None, Some(kes)) => kes.to_fabric().map(|c| c.fabric).map_err(|e| Err(e.to_string())),
+            _ => Err(Err(
+                "give exactly one of preset, [fabric.si] or [fabric.kes]".into()
+            )),
+        }
+    }
+}
+
+impl BodySpec {
+    /// The bodies this entry makes (a mannequin with arms makes three).
+    fn build(&self, file: &str, dir: &Path, k: usize) -> Result<Vec<Body>, SceneFileError> {
+        let key = format!("bodies[{k}]");
+        let invalid = |reason: String| SceneFileError::Invalid {
+            file: file.into(),
+            key: key.clone(),
+            reason,
+        };
+        let surface_error = |source| SceneFileError::Surface {
+            file: file.into(),
+            key: key.clone(),
+            source: Box::new(source),
+        };
+        let given = [
+            self.mannequin.is_some(),
+            self.file.is_some(),
+            self.sphere.is_some(),
+            self.cuboid.is_some(),
+        ];
+        if given.iter().filter(|g| **g).count() != 1 {
+            return Err(invalid(
+                "give exactly one of mannequin, file, sphere or box".into(),
+            ));
+        }
+        let named = |default: &str| self.name.clone().unwrap_or_else(|| default.to_string());
+        let surfaces: Vec<(String, TriSurface)> = if let Some(m) = &self.mannequin {
+            let mannequin = Mannequin::new(m).map_err(|source| SceneFileError::Mannequin {
+                file: file.into(),
+                key: format!("{key}.mannequin"),
+                source: Box::new(source),
+            })?;
+            mannequin
+                .surfaces()
+                .into_iter()
+                .map(|(part, s)| (format!("{} {part}", named("mannequin")), s.clone()))
+                .collect()
+        } else if let Some(path) = &self.file {
+            let path = dir.join(path);
+            let surface = TriSurface::read(&path, &self.surface_options()).map_err(surface_error)?;
+            vec![(named(&path.display().to_string()), surface)]
+        } else if let Some(sphere) = self.sphere {
+            vec![(
+                named("sphere"),
+                TriSurface::icosphere(sphere.radius, 4).map_err(surface_error)?,
+            )]
+        } else if let Some(b) = self.cuboid {
+            let half = Vec3::from(b.size) / 2.0;
+            vec![(named("box"), TriSurface::cuboid(half).map_err(surface_error)?)]
+        } else {
+            unreachable!("exactly one shape was checked above")
+        };
+        let pose = Isometry3::from_parts(
+            Translation3::from(Vec3::from(self.position)),
+            UnitQuaternion::identity(),
+        );
+        let body_error = |source| SceneFileError::Body {
+            file: file.into(),
+            key: key.clone(),
+            source,
+        };
+        surfaces
+            .into_iter()
+            .map(|(name, surface)| {
+                let mut body = Body::new(name, surface).with_pose(pose).map_err(body_error)?;
+                if let Some(t) = self.thickness {
+                    body = body.with_thickness(t).map_err(body_error)?;
+                }
+                if let Some(mu) = self.friction {
+                    body = body.with_friction(mu).map_err(body_error)?;
+                }
+                Ok(body)
+            })
+            .collect()
+    }
+}

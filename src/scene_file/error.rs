@@ -1,0 +1,93 @@
+//! What can be wrong with a scene, named by file and key; and what can go wrong running it.
+
+use crate::collide::{BodyError, SurfaceError};
+use crate::garment::mannequin::MannequinError;
+use crate::garment::{GarmentError, PatternError};
+use crate::presets::PresetError;
+use cloth_core::{MeshError, ParamError};
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum SceneFileError {
+    #[error("cannot read scene '{path}': {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Syntax, an unknown key or a wrong type: `message` carries the line and column.
+    #[error("{file}: {message}")]
+    Parse { file: String, message: String },
+    /// A value that parses but cannot be: `key` is its place in the file.
+    #[error("{file}: {key}: {reason}")]
+    Invalid {
+        file: String,
+        key: String,
+        reason: String,
+    },
+    #[error("{file}: {key}: {source}")]
+    Surface {
+        file: String,
+        key: String,
+        #[source]
+        source: Box<SurfaceError>,
+    },
+    #[error("{file}: {key}: {source}")]
+    Body {
+        file: String,
+        key: String,
+        #[source]
+        source: BodyError,
+    },
+    #[error("{file}: {key}: {source}")]
+    Mannequin {
+        file: String,
+        key: String,
+        #[source]
+        source: Box<MannequinError>,
+    },
+    #[error("{file}: fabric: {source}")]
+    Preset {
+        file: String,
+        #[source]
+        source: PresetError,
+    },
+    #[error(transparent)]
+    Pattern(#[from] PatternError),
+    #[error("{file}: {source}")]
+    Param {
+        file: String,
+        #[source]
+        source: ParamError,
+    },
+    #[error("{file}: cloth: {source}")]
+    Mesh {
+        file: String,
+        #[source]
+        source: MeshError,
+    },
+    /// A garment that cannot be made, or a stage that failed.
+    #[error(transparent)]
+    Garment(#[from] GarmentError),
+    /// The run itself failed (diverged): the scene was valid.
+    #[error("{stage}: {source}")]
+    Run {
+        stage: &'static str,
+        #[source]
+        source: cloth_core::SimError,
+    },
+}
+
+impl SceneFileError {
+    /// Whether the input was at fault (a bad scene, pattern, body or fabric), as opposed to
+    /// a run that failed on valid input.
+    pub fn is_input_error(&self) -> bool {
+        match self {
+            SceneFileError::Run { .. } => false,
+            SceneFileError::Garment(e) => {
+                !matches!(e, GarmentError::Sim { .. } | GarmentError::NotSewn { .. })
+            }
+            _ => true,
+        }
+    }
+}

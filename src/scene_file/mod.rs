@@ -1,0 +1,37 @@
+//! Scene files: one TOML description of a whole run (the cloth, its fabric, the bodies,
+//! the solver and its stages, the outputs), read by the `cloth` command and the Python
+//! package alike. Paths in it are relative to the scene file.
+
+mod build;
+mod error;
+mod records;
+mod run;
+
+pub use build::{Prepared, PreparedCloth};
+pub use error::SceneFileError;
+pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
+pub use run::{RunReport, RunResult, StageReport};
+
+use std::path::{Path, PathBuf};
+
+impl SceneFile {
+    /// Reads and parses a scene file; unknown keys are refused, and syntax errors give the
+    /// line and column.
+    pub fn from_path(path: &Path) -> Result<(SceneFile, PathBuf), SceneFileError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneFileError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let scene = Self::from_toml_str(&text, &path.display().to_string())?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Ok((scene, dir))
+    }
+
+    /// Parses a scene; `file` names it in errors.
+    pub fn from_toml_str(text: &str, file: &str) -> Result<SceneFile, SceneFileError> {
+        toml::from_str(text).map_err(|e| SceneFileError::Parse {
+            file: file.into(),
+            message: e.to_string(),
+        })
+    }
+}
