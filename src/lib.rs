@@ -5,6 +5,7 @@ pub use cloth_collide as collide;
 pub use cloth_core::*;
 
 pub use cloth_garment as garment;
+pub mod bench;
 pub mod obj;
 pub mod output;
 pub mod presets;

@@ -119,6 +119,21 @@ pub fn fabrics(name: Option<&str>) -> Result<(), Failure> {
     Ok(())
 }
 
+/// `cloth bench`: one JSON object on stdout.
+pub fn bench(steps: usize, quick: bool) -> Result<(), Failure> {
+    if steps == 0 {
+        return Err(Failure::input("--steps must be at least 1"));
+    }
+    let results = cloth::bench::standard_benchmarks(steps, quick).map_err(Failure::run)?;
+    let json = serde_json::json!({
+        "threads": cloth::bench::threads(),
+        "quick": quick,
+        "scenes": results,
+    });
+    println!("{json}");
+    Ok(())
+}
+
 /// `cloth mannequin ... -o FILE`.
 pub fn mannequin(measurements: Measurements, output: &Path) -> Result<(), Failure> {
     let mannequin = Mannequin::new(&measurements).map_err(Failure::input)?;

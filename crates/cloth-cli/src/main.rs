@@ -37,6 +37,16 @@ enum Command {
     Check { scene: PathBuf },
     /// List the fabric presets, or show one in SI units.
     Fabrics { name: Option<String> },
+    /// Run the standard benchmark scenes and print JSON (time per step, CG iterations,
+    /// particles), to track speed over time.
+    Bench {
+        /// Steps timed per scene.
+        #[arg(long, default_value_t = 60)]
+        steps: usize,
+        /// About a tenth of the particles: a smoke test, not a measurement.
+        #[arg(long)]
+        quick: bool,
+    },
     /// Write a generated mannequin as OBJ.
     Mannequin {
         #[arg(long, default_value_t = 1.68)]
@@ -91,6 +101,7 @@ fn main() -> ExitCode {
         } => commands::run(&scene, out, force, quiet),
         Command::Check { scene } => commands::check(&scene),
         Command::Fabrics { name } => commands::fabrics(name.as_deref()),
+        Command::Bench { steps, quick } => commands::bench(steps, quick),
         Command::Mannequin {
             height,
             bust,

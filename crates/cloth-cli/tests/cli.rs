@@ -208,3 +208,19 @@ fn a_diverging_run_exits_with_1_and_writes_its_report() {
     assert_eq!(report["failed"], true);
     assert!(report["error"].as_str().unwrap().contains("step 1"), "{report}");
 }
+
+#[test]
+fn bench_prints_json_for_the_standard_scenes() {
+    let o = cloth(&["bench", "--quick", "--steps", "3"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let scenes = json["scenes"].as_array().unwrap();
+    let names: Vec<&str> = scenes.iter().map(|s| s["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["hanging_sheet", "sheet_on_sphere", "dress_drape"]);
+    for s in scenes {
+        assert_eq!(s["steps"], 3);
+        assert!(s["particles"].as_u64().unwrap() > 100);
+        assert!(s["median_ms_per_step"].as_f64().unwrap() > 0.0);
+    }
+    assert!(json["threads"].as_u64().unwrap() >= 1);
+}

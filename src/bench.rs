@@ -1,0 +1,102 @@
+//! The standard benchmark scenes behind `cloth bench`: a fixed set of runs whose time per
+//! step and CG iterations are printed as JSON, to track speed over time.
+
+use crate::collide::Bodies;
+use crate::garment::mannequin::{Mannequin, Measurements};
+use crate::garment::sewing::{drape_simulation, sew, SewingSettings};
+use crate::garment::{GarmentBuilder, Pattern};
+use crate::presets::FabricLibrary;
+use crate::scenes::SphereDrop;
+use cloth_core::{Fabric, GridBuilder, Pin, Simulation, SimulationBuilder, SolverSettings, Vec3};
+use serde::Serialize;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// One benchmark's figures.
+#[derive(Debug, Clone, Serialize)]
+pub struct BenchResult {
+    pub name: &'static str,
+    pub particles: usize,
+    pub steps: usize,
+    /// Wall time per step, ms.
+    pub median_ms_per_step: f64,
+    pub median_cg_iterations: usize,
+}
+
+/// Runs the standard scenes for `steps` steps each: the source's 110 x 110 hanging sheet,
+/// a 60 x 60 sheet dropped on a sphere, and the basic dress draping on the default
+/// mannequin at about 12,000 particles (timed after it is sewn). `quick` runs them at
+/// about a tenth of the particles, for a smoke test.
+pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>, String> {
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    let mut results = Vec::new();
+
+    let n = if quick { 35 } else { 110 };
+    let mesh = GridBuilder::new(n, n)
+        .size(1.0, 1.0)
+        .axes(Vec3::x(), -Vec3::z())
+        .build()
+        .map_err(|x| e(&x))?;
+    let g = mesh.grid().expect("a grid");
+    let sim = SimulationBuilder::new(mesh, Fabric::cotton_like().with_damping(2e-3).with_drag(0.05))
+        .pin(Pin::fixed(g.index(0, 0)))
+        .pin(Pin::fixed(g.index(n - 1, 0)))
+        .build()
+        .map_err(|x| e(&x))?;
+    results.push(time_steps("hanging_sheet", sim, steps)?);
+
+    let drop = SphereDrop {
+        particles_per_side: if quick { 20 } else { 60 },
+        ..SphereDrop::default()
+    };
+    let scene = drop.build().map_err(|x| e(&x))?;
+    results.push(time_steps("sheet_on_sphere", scene.simulation, steps)?);
+
+    let pattern = Pattern::from_toml_str(include_str!("../assets/patterns/dress.toml"), "dress.toml")
+        .map_err(|x| e(&x))?;
+    let edge = if quick { 0.035 } else { 0.0123 };
+    let garment = GarmentBuilder::new(pattern)
+        .edge_length(edge)
+        .build()
+        .map_err(|x| e(&x))?;
+    let mannequin = Mannequin::new(&Measurements::default()).map_err(|x| e(&x))?;
+    let bodies = Arc::new(Bodies::new(mannequin.bodies()));
+    let fabrics = FabricLibrary::builtin()
+        .panel_fabrics(&garment, "cotton_poplin")
+        .map_err(|x| e(&x))?;
+    let sewn = sew(
+        &garment,
+        &fabrics,
+        bodies.clone(),
+        &SewingSettings::default(),
+        |_, _, _| {},
+    )
+    .map_err(|x| e(&x))?;
+    let sim = drape_simulation(&sewn, bodies, SolverSettings::default(), 0.0).map_err(|x| e(&x))?;
+    results.push(time_steps("dress_drape", sim, steps)?);
+    Ok(results)
+}
+
+fn time_steps(name: &'static str, mut sim: Simulation, steps: usize) -> Result<BenchResult, String> {
+    let (mut ms, mut cg) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
+    for _ in 0..steps {
+        let start = Instant::now();
+        let stats = sim.step().map_err(|x| format!("{name}: {x}"))?;
+        ms.push(start.elapsed().as_secs_f64() * 1e3);
+        cg.push(stats.cg_iterations);
+    }
+    ms.sort_by(f64::total_cmp);
+    cg.sort_unstable();
+    Ok(BenchResult {
+        name,
+        particles: sim.mesh().vertex_count(),
+        steps,
+        median_ms_per_step: ms.get(steps / 2).copied().unwrap_or(0.0),
+        median_cg_iterations: cg.get(steps / 2).copied().unwrap_or(0),
+    })
+}
+
+/// The worker threads the parallel loops use.
+pub fn threads() -> usize {
+    rayon::current_num_threads()
+}
