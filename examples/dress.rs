@@ -143,7 +143,8 @@ fn sew_dress(
     let start = Instant::now();
     let garment = GarmentBuilder::new(pattern.clone()).edge_length(edge).build()?;
     let meshing = start.elapsed().as_secs_f64();
-    let fabrics = FabricLibrary::builtin().panel_fabrics(&garment, FABRIC)?;
+    let library = FabricLibrary::builtin();
+    let fabrics = library.panel_fabrics(&garment, &library.fabric(FABRIC)?)?;
     let sewn = sew(
         &garment,
         &fabrics,

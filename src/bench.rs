@@ -62,7 +62,12 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
     let mannequin = Mannequin::new(&Measurements::default()).map_err(|x| e(&x))?;
     let bodies = Arc::new(Bodies::new(mannequin.bodies()));
     let fabrics = FabricLibrary::builtin()
-        .panel_fabrics(&garment, "cotton_poplin")
+        .panel_fabrics(
+            &garment,
+            &FabricLibrary::builtin()
+                .fabric("cotton_poplin")
+                .map_err(|x| e(&x))?,
+        )
         .map_err(|x| e(&x))?;
     let sewn = sew(
         &garment,

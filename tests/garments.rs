@@ -52,7 +52,10 @@ fn dress(pattern: &str, body: Body) -> Dressed {
     let bodies = Arc::new(bodies);
     assert!(garment.placement_warnings(&bodies).is_empty());
     let fabrics = FabricLibrary::builtin()
-        .panel_fabrics(&garment, "cotton_poplin")
+        .panel_fabrics(
+            &garment,
+            &FabricLibrary::builtin().fabric("cotton_poplin").unwrap(),
+        )
         .unwrap();
     let settings = SewingSettings::default();
     let sewn = sew(&garment, &fabrics, bodies.clone(), &settings, |_, _, _| {}).unwrap();
@@ -157,11 +160,12 @@ fn each_panel_gets_the_fabric_it_names() {
         .build()
         .unwrap();
     let library = FabricLibrary::builtin();
-    let fabrics = library.panel_fabrics(&garment, "silk").unwrap();
+    let silk = library.fabric("silk").unwrap();
+    let fabrics = library.panel_fabrics(&garment, &silk).unwrap();
     assert_eq!(fabrics[0], library.fabric("silk").unwrap());
     assert_eq!(fabrics[1], library.fabric("wang_black_denim").unwrap());
     pattern.panels[0].fabric = Some("tweed".into());
     let garment = GarmentBuilder::new(pattern).edge_length(0.03).build().unwrap();
-    let e = library.panel_fabrics(&garment, "silk").unwrap_err().to_string();
+    let e = library.panel_fabrics(&garment, &silk).unwrap_err().to_string();
     assert!(e.contains("unknown fabric preset `tweed`"), "{e}");
 }

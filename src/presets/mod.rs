@@ -103,12 +103,15 @@ impl FabricLibrary {
     pub fn panel_fabrics(
         &self,
         garment: &cloth_garment::Garment,
-        default: &str,
+        default: &Fabric,
     ) -> Result<Vec<Fabric>, PresetError> {
         garment
             .panel_fabrics
             .iter()
-            .map(|name| self.fabric(name.as_deref().unwrap_or(default)))
+            .map(|name| match name {
+                Some(name) => self.fabric(name),
+                None => Ok(default.clone()),
+            })
             .collect()
     }
 

@@ -75,18 +75,13 @@ impl SceneFile {
                     .edge_length(*edge_length)
                     .file(path.display().to_string())
                     .build()?;
-                let fabrics = garment
-                    .panel_fabrics
-                    .iter()
-                    .map(|name| match name {
-                        Some(name) => library.fabric(name),
-                        None => Ok(fabric.clone()),
-                    })
-                    .collect::<Result<Vec<_>, _>>()
-                    .map_err(|source| SceneFileError::Preset {
-                        file: path.display().to_string(),
-                        source,
-                    })?;
+                let fabrics =
+                    library
+                        .panel_fabrics(&garment, &fabric)
+                        .map_err(|source| SceneFileError::Preset {
+                            file: path.display().to_string(),
+                            source,
+                        })?;
                 let warnings = garment.placement_warnings(&bodies);
                 (PreparedCloth::Garment { garment, fabrics }, warnings)
             }

@@ -3,7 +3,7 @@
 
 mod commands;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -48,25 +48,48 @@ enum Command {
         quick: bool,
     },
     /// Write a generated mannequin as OBJ.
-    Mannequin {
-        #[arg(long, default_value_t = 1.68)]
-        height: f64,
-        #[arg(long, default_value_t = 0.92)]
-        bust: f64,
-        #[arg(long, default_value_t = 0.76)]
-        waist: f64,
-        #[arg(long, default_value_t = 0.98)]
-        hip: f64,
-        #[arg(long, default_value_t = 0.40)]
-        shoulder_width: f64,
-        #[arg(long, default_value_t = 0.36)]
-        neck_girth: f64,
-        /// With arms (average proportions).
-        #[arg(long)]
-        arms: bool,
-        #[arg(short, long)]
-        output: PathBuf,
-    },
+    Mannequin(MannequinArgs),
+}
+
+/// The mannequin's measurements, m (the defaults are the shipped average body).
+#[derive(Args)]
+struct MannequinArgs {
+    #[arg(long, default_value_t = 1.68)]
+    height: f64,
+    #[arg(long, default_value_t = 0.92)]
+    bust: f64,
+    #[arg(long, default_value_t = 0.76)]
+    waist: f64,
+    #[arg(long, default_value_t = 0.98)]
+    hip: f64,
+    #[arg(long, default_value_t = 0.40)]
+    shoulder_width: f64,
+    #[arg(long, default_value_t = 0.36)]
+    neck_girth: f64,
+    /// With arms (average proportions).
+    #[arg(long)]
+    arms: bool,
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+impl MannequinArgs {
+    fn measurements(&self) -> cloth::garment::mannequin::Measurements {
+        let m = cloth::garment::mannequin::Measurements {
+            height: self.height,
+            bust: self.bust,
+            waist: self.waist,
+            hip: self.hip,
+            shoulder_width: self.shoulder_width,
+            neck_girth: self.neck_girth,
+            arms: None,
+        };
+        if self.arms {
+            m.with_arms()
+        } else {
+            m
+        }
+    }
 }
 
 /// A failure with the exit status it deserves.
@@ -102,27 +125,7 @@ fn main() -> ExitCode {
         Command::Check { scene } => commands::check(&scene),
         Command::Fabrics { name } => commands::fabrics(name.as_deref()),
         Command::Bench { steps, quick } => commands::bench(steps, quick),
-        Command::Mannequin {
-            height,
-            bust,
-            waist,
-            hip,
-            shoulder_width,
-            neck_girth,
-            arms,
-            output,
-        } => {
-            let m = cloth::garment::mannequin::Measurements {
-                height,
-                bust,
-                waist,
-                hip,
-                shoulder_width,
-                neck_girth,
-                arms: None,
-            };
-            commands::mannequin(if arms { m.with_arms() } else { m }, &output)
-        }
+        Command::Mannequin(args) => commands::mannequin(args.measurements(), &args.output),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -22,6 +22,17 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// `cloth run SCENE --out OUT --quiet`.
+fn run_quietly(scene: &Path, out: &Path) -> Output {
+    cloth(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ])
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -150,13 +161,7 @@ fn a_run_writes_outputs_that_read_back() {
     let scene = dir.join("sheet.toml");
     std::fs::write(&scene, SHEET).unwrap();
     let out = dir.join("out");
-    let o = cloth(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quietly(&scene, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let (models, _) = tobj::load_obj(out.join("cloth.obj"), &tobj::LoadOptions::default()).unwrap();
     let mesh = &models[0].mesh;
@@ -177,13 +182,7 @@ fn a_run_writes_outputs_that_read_back() {
     );
     assert!(out.join("report.md").exists() && out.join("bodies.obj").exists());
     // The folder is not overwritten without --force.
-    let o = cloth(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quietly(&scene, &out);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
 }
@@ -195,13 +194,7 @@ fn a_diverging_run_exits_with_1_and_writes_its_report() {
     // A speed limit the falling sheet passes at once.
     std::fs::write(&scene, format!("{SHEET}\n[solver]\nmax_speed = 0.01\n")).unwrap();
     let out = dir.join("out");
-    let o = cloth(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quietly(&scene, &out);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();

@@ -84,8 +84,9 @@ pub(crate) struct StiffnessTarget<'a> {
 pub(crate) struct ForceModel {
     /// The fabrics, each triangle naming one (a garment's panels may differ).
     fabrics: Vec<Fabric>,
-    /// Rayleigh damping of the seam pull: the largest of the fabrics'.
-    seam_damping: f64,
+    /// The largest of the fabrics' Rayleigh damping: whether `K v` is needed without a
+    /// stiffness target, and the seam pull's own damping.
+    max_damping: f64,
     tris: Vec<TriElement>,
     tri_colors: Vec<Range<usize>>,
     hinges: Vec<HingeElement>,
@@ -199,7 +200,7 @@ impl ForceModel {
         let model = Self {
             tri_energy: vec![0.0; tris.len()],
             hinge_energy: vec![0.0; hinges.len()],
-            seam_damping: fabrics.iter().map(|f| f.damping).fold(0.0, f64::max),
+            max_damping: fabrics.iter().map(|f| f.damping).fold(0.0, f64::max),
             fabrics,
             tris,
             tri_colors,
@@ -281,7 +282,7 @@ impl ForceModel {
         mut stiffness: Option<StiffnessTarget<'_>>,
         parallel: bool,
     ) -> f64 {
-        let need_k = stiffness.is_some() || self.fabrics.iter().any(|f| f.damping > 0.0);
+        let need_k = stiffness.is_some() || self.max_damping > 0.0;
         let mode = if need_k {
             HessianMode::Projected
         } else {
@@ -355,7 +356,7 @@ impl ForceModel {
         );
         let pull = self.seam_pull;
         if pull.stiffness > 0.0 {
-            let beta = self.seam_damping;
+            let beta = self.max_damping;
             let seam_kernel = |e: &SeamElement, energy: &mut f64| {
                 let mut local = Local::<2>::default();
                 add_seam_pull(pull, [x[e.v[0] as usize], x[e.v[1] as usize]], need_k, &mut local);

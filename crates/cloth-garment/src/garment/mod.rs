@@ -206,17 +206,4 @@ impl Garment {
         }
         widest
     }
-
-    /// The widest gap of each seam at `positions`, m.
-    pub fn seam_gaps(&self, positions: &[Vec3]) -> Vec<f64> {
-        self.seams
-            .iter()
-            .map(|s| {
-                s.pairs
-                    .iter()
-                    .map(|&[a, b]| (positions[a] - positions[b]).norm())
-                    .fold(0.0, f64::max)
-            })
-            .collect()
-    }
 }

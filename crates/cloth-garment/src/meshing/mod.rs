@@ -3,4 +3,6 @@
 
 mod polygon;
 
-pub use polygon::{circle, mesh_region, triangulate_polygon, MeshingError, RegionMesh, ANGLE_LIMIT_DEGREES};
+pub use polygon::{
+    circle, encloses, mesh_region, triangulate_polygon, MeshingError, RegionMesh, ANGLE_LIMIT_DEGREES,
+};

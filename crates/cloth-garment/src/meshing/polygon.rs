@@ -218,7 +218,7 @@ fn bow_straight_runs(points: &[Vector2<f64>], outer: bool) -> Vec<Vector2<f64>> 
 }
 
 /// Even-odd point-in-polygon.
-fn encloses(polygon: &[Vector2<f64>], p: Vector2<f64>) -> bool {
+pub fn encloses(polygon: &[Vector2<f64>], p: Vector2<f64>) -> bool {
     let n = polygon.len();
     let mut inside = false;
     for i in 0..n {

@@ -1,6 +1,7 @@
 //! Checks of a pattern's geometry and seams, in the order a person should fix them.
 
 use super::{Edge, Pattern, PatternError, Point2};
+use crate::meshing::encloses;
 
 /// Two ends of consecutive edges closer than this (m) are the same point.
 const CLOSURE: f64 = 1e-6;
@@ -93,10 +94,10 @@ impl Pattern {
                 }
                 polylines.push(line);
             }
-            let outline = &polylines[0];
+            let outline: Vec<Point2> = polylines[0].iter().map(|(p, _)| *p).collect();
             for (h, hole) in polylines.iter().enumerate().skip(1) {
-                let inside = hole.iter().all(|(p, _)| contains(outline, *p));
-                if !inside || crosses(outline, hole) {
+                let inside = hole.iter().all(|(p, _)| encloses(&outline, *p));
+                if !inside || crosses(&polylines[0], hole) {
                     return Err(fail(None, format!("hole {} is not inside the outline", h - 1)));
                 }
             }
@@ -213,17 +214,4 @@ fn segments_meet(a: Point2, b: Point2, c: Point2, d: Point2) -> bool {
 fn signed_area(line: &[(Point2, usize)]) -> f64 {
     let n = line.len();
     0.5 * (0..n).map(|i| line[i].0.perp(&line[(i + 1) % n].0)).sum::<f64>()
-}
-
-/// Even-odd point-in-polygon.
-fn contains(line: &[(Point2, usize)], p: Point2) -> bool {
-    let n = line.len();
-    let mut inside = false;
-    for i in 0..n {
-        let (a, b) = (line[i].0, line[(i + 1) % n].0);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            inside = !inside;
-        }
-    }
-    inside
 }
