@@ -9,6 +9,7 @@
 use cloth::obj::write_cloth_obj;
 use cloth::scenes::{CubeCorner, FallingPlate, Scene, SceneError, SphereDrop, Tablecloth, TurningSphere};
 use cloth::{RestCriteria, StopReason, StrainReport};
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -93,6 +94,7 @@ fn main() {
                 step_ms.last().copied().unwrap_or(0.0),
             );
         }
+        ControlFlow::Continue(())
     });
     let outcome = match outcome {
         Ok(o) => o,

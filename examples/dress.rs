@@ -9,7 +9,7 @@
 //! stable, found by trial) and after 100 and 500 of implicit Euler at 1/60 s, with the
 //! time per iteration.
 //!
-//! The draped dress and the mannequin are written as OBJ to `target/dress/` (or `--out`).
+//! The draped dress and the mannequin are written as OBJ to `target/dress-example/` (or `--out`).
 //!
 //!     cargo run --release --example dress [-- --edge 0.0123] [--repeat 3] [--experiment] [--out DIR]
 
@@ -19,6 +19,7 @@ use cloth::garment::sewing::{drape, drape_simulation, sew, DrapeSettings, Sewing
 use cloth::garment::{Garment, GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
 use cloth::{Fabric, Integrator, SolverSettings, StrainReport};
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -40,7 +41,7 @@ fn parse() -> Result<Args, String> {
         edge: EDGE_LENGTH,
         repeat: 1,
         experiment: false,
-        out: Some(PathBuf::from("target/dress")),
+        out: Some(PathBuf::from("target/dress-example")),
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -79,7 +80,9 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     for run in 0..args.repeat {
         let start = Instant::now();
         let (garment, sewn, meshing) = sew_dress(&pattern, &bodies, args.edge)?;
-        let draped = drape(&sewn, bodies.clone(), &DrapeSettings::default(), |_, _| {})?;
+        let draped = drape(&sewn, bodies.clone(), &DrapeSettings::default(), |_, _| {
+            ControlFlow::Continue(())
+        })?;
         let total = start.elapsed().as_secs_f64();
         let sim = &draped.simulation;
         let strain = StrainReport::new(sim.mesh(), sim.positions());
@@ -150,7 +153,7 @@ fn sew_dress(
         &fabrics,
         bodies.clone(),
         &SewingSettings::default(),
-        |_, _, _| {},
+        |_, _, _| ControlFlow::Continue(()),
     )?;
     Ok((garment, sewn, meshing))
 }

@@ -9,6 +9,7 @@
 use cloth::{
     Fabric, GridBuilder, GridStretch, Pin, RestCriteria, SimulationBuilder, StopReason, StrainReport,
 };
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 fn main() {
@@ -76,14 +77,15 @@ fn main() {
         if checkpoints.contains(&s.step) {
             report(sim, &times, &iterations);
         }
+        ControlFlow::Continue(())
     });
     let (grid, strain) = report(&sim, &times, &iterations);
     let (reason, error) = match &outcome {
         Ok(out) => (
-            if out.reason == StopReason::AtRest {
-                "at_rest"
-            } else {
-                "step_limit"
+            match out.reason {
+                StopReason::AtRest => "at_rest",
+                StopReason::StepLimit => "step_limit",
+                StopReason::Stopped => "stopped",
             },
             String::new(),
         ),

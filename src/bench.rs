@@ -9,6 +9,7 @@ use crate::presets::FabricLibrary;
 use crate::scenes::SphereDrop;
 use cloth_core::{Fabric, GridBuilder, Pin, Simulation, SimulationBuilder, SolverSettings, Vec3};
 use serde::Serialize;
+use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -74,7 +75,7 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
         &fabrics,
         bodies.clone(),
         &SewingSettings::default(),
-        |_, _, _| {},
+        |_, _, _| ControlFlow::Continue(()),
     )
     .map_err(|x| e(&x))?;
     let sim = drape_simulation(&sewn, bodies, SolverSettings::default(), 0.0).map_err(|x| e(&x))?;

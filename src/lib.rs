@@ -9,6 +9,7 @@ pub mod bench;
 pub mod obj;
 pub mod output;
 pub mod presets;
+pub mod render;
 pub mod scene_file;
 pub mod scenes;
 pub mod validation;

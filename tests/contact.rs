@@ -4,6 +4,7 @@
 use cloth::collide::Bodies;
 use cloth::scenes::{CubeCorner, FallingPlate, Scene, SphereDrop, Tablecloth, TiltedPlane, TurningSphere};
 use cloth::{RestCriteria, Simulation, StopReason, Vec3};
+use std::ops::ControlFlow;
 
 /// Steps `scene` until at rest or `max_steps`, asserting after every step that no particle
 /// is deeper inside a body than a tenth of the contact thickness.
@@ -17,7 +18,10 @@ fn run_checked(scene: &mut Scene, max_steps: u64, thickness: f64) -> StopReason 
     let mut worst = Depth::default();
     let outcome = scene
         .simulation
-        .run_to_rest_with(&criteria, |sim, stats| worst.check(&bodies, sim, stats.step))
+        .run_to_rest_with(&criteria, |sim, stats| {
+            worst.check(&bodies, sim, stats.step);
+            ControlFlow::Continue(())
+        })
         .expect("the run does not fail");
     worst.assert_within(thickness);
     outcome.reason

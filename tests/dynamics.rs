@@ -7,6 +7,7 @@ use cloth::{
     SolverSettings, StopReason, Vec3,
 };
 use common::{max_distance, two_corner_sheet};
+use std::ops::ControlFlow;
 
 const SIZE: f64 = 0.5;
 const N: usize = 15;
@@ -195,10 +196,34 @@ fn a_run_says_why_it_stopped() {
             consecutive_steps: 5,
             max_steps: 3,
         },
-        |_, s| seen.push(s.step),
+        |_, s| {
+            seen.push(s.step);
+            ControlFlow::Continue(())
+        },
     )
     .unwrap();
     assert_eq!(seen, vec![8, 9, 10]);
+    // The observer stops a run after the step it breaks on.
+    let out = sim
+        .run_to_rest_with(
+            &RestCriteria {
+                tolerance: 1e-9,
+                consecutive_steps: 5,
+                max_steps: 100,
+            },
+            |_, s| {
+                if s.step == 12 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        )
+        .unwrap();
+    assert_eq!(
+        (out.reason, out.steps, sim.step_count()),
+        (StopReason::Stopped, 2, 12)
+    );
 }
 
 #[test]

@@ -8,6 +8,7 @@ use cloth::garment::sewing::{drape, sew, DrapeSettings, Draped, SewingSettings, 
 use cloth::garment::{GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
 use cloth::{StopReason, StrainReport, Vec3};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
 /// Coarser than the benchmark's 1.2 cm, so the suite stays quick.
@@ -58,8 +59,14 @@ fn dress(pattern: &str, body: Body) -> Dressed {
         )
         .unwrap();
     let settings = SewingSettings::default();
-    let sewn = sew(&garment, &fabrics, bodies.clone(), &settings, |_, _, _| {}).unwrap();
-    let draped = drape(&sewn, bodies.clone(), &DrapeSettings::default(), |_, _| {}).unwrap();
+    let sewn = sew(&garment, &fabrics, bodies.clone(), &settings, |_, _, _| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    let draped = drape(&sewn, bodies.clone(), &DrapeSettings::default(), |_, _| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
     let sim = &draped.simulation;
     let (depth_inside, _) = bodies.deepest_inside(sim.time(), sim.positions());
     let strain = StrainReport::new(sim.mesh(), sim.positions());

@@ -1,11 +1,14 @@
 //! What a scene run writes into its output folder: the cloth as OBJ (with material
-//! coordinates) and PLY (with strain colours), the bodies as OBJ, and the report as JSON
-//! and markdown. Every file is written atomically.
+//! coordinates) and PLY (with strain colours), the bodies as OBJ, both in one glTF binary,
+//! a picture, and the report as JSON and markdown. Every file is written atomically.
 
+mod glb;
 mod ply;
 mod report;
 
+pub use glb::{write_glb, GlbCloth};
 pub use ply::write_strain_ply;
+pub use ply::{colour, FULL_SCALE_PERCENT};
 pub use report::write_report;
 
 use crate::collide::{Bodies, TriSurface};
@@ -31,11 +34,35 @@ pub fn write_outputs(
         write_strain_ply(&path, &result.mesh, &result.positions)?;
         written.push(path);
     }
-    if spec.bodies && !bodies.bodies().is_empty() {
+    // The bodies where the run left them.
+    let time = result.report.simulated_time;
+    let surfaces: Vec<TriSurface> = bodies.bodies().iter().map(|b| b.surface_at(time)).collect();
+    if spec.bodies && !surfaces.is_empty() {
         let path = dir.join("bodies.obj");
-        let surfaces: Vec<TriSurface> = bodies.bodies().iter().map(|b| b.surface_at(0.0)).collect();
         let merged = TriSurface::merged(&surfaces);
         crate::obj::write_atomically(&path, |out| merged.write_obj_to(out))?;
+        written.push(path);
+    }
+    if spec.glb {
+        let path = dir.join("scene.glb");
+        let named: Vec<(String, TriSurface)> = bodies
+            .bodies()
+            .iter()
+            .zip(&surfaces)
+            .map(|(b, s)| (b.name().to_string(), s.clone()))
+            .collect();
+        let cloth = GlbCloth {
+            mesh: &result.mesh,
+            positions: &result.positions,
+        };
+        write_glb(&path, &cloth, &named)?;
+        written.push(path);
+    }
+    if spec.png {
+        let path = dir.join("render.png");
+        let [width, height] = spec.image_size;
+        crate::render::render_run(&result.mesh, &result.positions, &surfaces, width, height)
+            .write_png(&path)?;
         written.push(path);
     }
     written.extend(write_report(dir, &result.report)?);

@@ -1,7 +1,8 @@
 //! report.json and report.md: the same figures, for programs and for people.
 
 use crate::obj::write_atomically;
-use crate::scene_file::RunReport;
+use crate::scene_file::{RunOutcome, RunReport};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Writes `report.json` and `report.md` into `dir`.
@@ -12,52 +13,90 @@ pub fn write_report(dir: &Path, report: &RunReport) -> std::io::Result<Vec<PathB
         writeln!(out)
     })?;
     let md = dir.join("report.md");
-    write_atomically(&md, |out| {
+    write_atomically(&md, |out| write_markdown(out, report))?;
+    Ok(vec![json, md])
+}
+
+fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()> {
+    let title = if report.scene.is_empty() {
+        "cloth run"
+    } else {
+        &report.scene
+    };
+    writeln!(out, "# {title}\n")?;
+    match &report.outcome {
+        RunOutcome::Finished => {}
+        RunOutcome::Interrupted { stage, step } => writeln!(
+            out,
+            "**Interrupted** at {stage} step {step}: the outputs hold the state reached.\n"
+        )?,
+        RunOutcome::Failed { stage, step, error } => writeln!(
+            out,
+            "**Failed**: {error}. The outputs hold the last good state, after {stage} step {step}.\n"
+        )?,
+    }
+    writeln!(
+        out,
+        "{} particles, {} triangles, {:.2} s in all.\n",
+        report.particles, report.triangles, report.total_seconds
+    )?;
+    writeln!(
+        out,
+        "| stage | steps | seconds | CG iterations | ended |\n|---|---|---|---|---|"
+    )?;
+    for s in &report.stages {
         writeln!(
             out,
-            "# {}\n",
-            if report.scene.is_empty() {
-                "cloth run"
-            } else {
-                &report.scene
-            }
+            "| {} | {} | {:.2} | {} | {} |",
+            s.stage, s.steps, s.seconds, s.cg_iterations, s.ended
         )?;
+    }
+    let s = &report.strain;
+    writeln!(out, "\n| measure | value |\n|---|---|")?;
+    writeln!(out, "| max warp strain | {:.3} % |", s.max_warp)?;
+    writeln!(out, "| max weft strain | {:.3} % |", s.max_weft)?;
+    writeln!(
+        out,
+        "| 99th percentile warp / weft | {:.3} % / {:.3} % |",
+        s.p99_warp, s.p99_weft
+    )?;
+    writeln!(
+        out,
+        "| deepest penetration | {:.2e} m |",
+        report.deepest_penetration
+    )?;
+    if let Some(gap) = report.largest_seam_gap {
+        writeln!(out, "| largest seam gap | {:.2} mm |", 1e3 * gap)?;
+    }
+    if !report.checkpoints.is_empty() {
         writeln!(
             out,
-            "{} particles, {} triangles, {:.2} s in all.\n",
-            report.particles, report.triangles, report.total_seconds
+            "\nLargest stretch after N steps (iterations):\n\n\
+             | stage | steps | time, s | max warp | max weft | ms per step (median) |\n\
+             |---|---|---|---|---|---|"
         )?;
-        writeln!(
-            out,
-            "| stage | steps | seconds | CG iterations | ended |\n|---|---|---|---|---|"
-        )?;
-        for s in &report.stages {
+        for c in &report.checkpoints {
             writeln!(
                 out,
-                "| {} | {} | {:.2} | {} | {} |",
-                s.stage, s.steps, s.seconds, s.cg_iterations, s.ended
+                "| {} | {} | {:.4} | {:.3} % | {:.3} % | {:.2} |",
+                c.stage, c.step, c.time, c.max_warp, c.max_weft, c.median_step_ms
             )?;
         }
-        writeln!(out, "\n| measure | value |\n|---|---|")?;
-        writeln!(out, "| max warp strain | {:.3} % |", report.max_warp)?;
-        writeln!(out, "| max weft strain | {:.3} % |", report.max_weft)?;
+    }
+    if let Some(last) = report.frames.last() {
         writeln!(
             out,
-            "| 99th percentile warp / weft | {:.3} % / {:.3} % |",
-            report.p99_warp, report.p99_weft
+            "\n{} frames in `{}` (the last at {} step {}).",
+            report.frames.len(),
+            Path::new(&last.file)
+                .parent()
+                .map_or("".into(), |p| p.display().to_string()),
+            last.stage,
+            last.step
         )?;
-        writeln!(
-            out,
-            "| deepest penetration | {:.2e} m |",
-            report.deepest_penetration
-        )?;
-        if let Some(gap) = report.largest_seam_gap {
-            writeln!(out, "| largest seam gap at welding | {:.2} mm |", 1e3 * gap)?;
-        }
-        for w in &report.warnings {
-            writeln!(out, "\nWarning: {w}")?;
-        }
-        Ok(())
-    })?;
-    Ok(vec![json, md])
+    }
+    for w in &report.warnings {
+        writeln!(out, "\nWarning: {w}")?;
+    }
+    Ok(())
 }

@@ -2,13 +2,15 @@
 //! and the bodies. Everything a run needs is checked here, so `cloth check` finds what
 //! `cloth run` would trip on.
 
+use super::cloth_file::read_cloth_obj;
 use super::records::{BodySpec, ClothSpec, FabricSpec, SceneFile};
 use super::SceneFileError;
 use crate::collide::{Bodies, Body, TriSurface};
 use crate::garment::mannequin::Mannequin;
 use crate::garment::{garmentcode, Garment, GarmentBuilder, Pattern, PlacementWarning};
 use crate::presets::FabricLibrary;
-use cloth_core::{Fabric, GridBuilder, Pin, SimulationBuilder, Vec3};
+use crate::validation::{Cantilever, CusickTest};
+use cloth_core::{Fabric, GridBuilder, GridShape, Pin, SimulationBuilder, Vec3};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use std::path::Path;
 use std::sync::Arc;
@@ -24,9 +26,21 @@ pub struct Prepared {
 
 pub enum PreparedCloth {
     /// A garment to sew and drape, each panel with its fabric.
-    Garment { garment: Garment, fabrics: Vec<Fabric> },
-    /// A sheet to run to rest.
-    Sheet { builder: SimulationBuilder },
+    Garment {
+        garment: Box<Garment>,
+        fabrics: Vec<Fabric>,
+    },
+    /// A sheet to run to rest, and the test that measures it at rest, if it is one.
+    Sheet {
+        builder: Box<SimulationBuilder>,
+        test: Option<SheetTest>,
+    },
+}
+
+/// A fabric test a sheet's run is: what to read from the cloth at rest.
+pub enum SheetTest {
+    Cusick,
+    Cantilever { test: Box<Cantilever>, grid: GridShape },
 }
 
 impl SceneFile {
@@ -46,6 +60,9 @@ impl SceneFile {
         self.rest.validate().map_err(param)?;
         self.sewing.validate().map_err(param)?;
         self.drape.validate().map_err(param)?;
+        self.output
+            .check()
+            .map_err(|(key, reason)| invalid(key, reason))?;
         let library = FabricLibrary::builtin();
         let fabric = self.fabric.resolve(library).map_err(|e| match e {
             Ok(source) => SceneFileError::Preset {
@@ -83,7 +100,13 @@ impl SceneFile {
                             source,
                         })?;
                 let warnings = garment.placement_warnings(&bodies);
-                (PreparedCloth::Garment { garment, fabrics }, warnings)
+                (
+                    PreparedCloth::Garment {
+                        garment: Box::new(garment),
+                        fabrics,
+                    },
+                    warnings,
+                )
             }
             ClothSpec::Grid {
                 nx,
@@ -104,7 +127,7 @@ impl SceneFile {
                         source,
                     })?;
                 let g = mesh.grid().expect("a grid builder makes a grid");
-                let mut builder = SimulationBuilder::new(mesh, fabric).settings(self.solver.clone());
+                let mut builder = SimulationBuilder::new(mesh, fabric.clone()).settings(self.solver.clone());
                 for (k, &[i, j]) in pins.iter().enumerate() {
                     if i >= *nx || j >= *ny {
                         return Err(invalid(
@@ -114,10 +137,69 @@ impl SceneFile {
                     }
                     builder = builder.pin(Pin::fixed(g.index(i, j)));
                 }
-                if !bodies.bodies().is_empty() {
-                    builder = builder.collider(bodies.clone());
+                (sheet(builder, &bodies, None), Vec::new())
+            }
+            ClothSpec::Mesh {
+                file: mesh_file,
+                scale,
+                uv_scale,
+                position,
+                pins,
+            } => {
+                let path = dir.join(mesh_file);
+                let mesh =
+                    read_cloth_obj(&path, *scale, *uv_scale, Vec3::from(*position)).map_err(|reason| {
+                        invalid("cloth.mesh.file", format!("'{}': {reason}", path.display()))
+                    })?;
+                let n = mesh.vertex_count();
+                if let Some((k, i)) = pins.iter().enumerate().find(|(_, &i)| i >= n) {
+                    return Err(invalid(
+                        &format!("cloth.mesh.pins[{k}]"),
+                        format!("vertex {i}, but the mesh has {n} (numbered from 0)"),
+                    ));
                 }
-                (PreparedCloth::Sheet { builder }, Vec::new())
+                let builder = SimulationBuilder::new(mesh, fabric)
+                    .settings(self.solver.clone())
+                    .pins(pins.iter().map(|&i| Pin::fixed(i)));
+                (sheet(builder, &bodies, None), Vec::new())
+            }
+            ClothSpec::Cusick { edge_length, damping } => {
+                let mut test = CusickTest::new(fabric);
+                test.edge_length = *edge_length;
+                test.damping = *damping;
+                let builder = test
+                    .simulation_builder()
+                    .map_err(|e| invalid("cloth.cusick", e.to_string()))?
+                    .settings(self.solver.clone());
+                (sheet(builder, &bodies, Some(SheetTest::Cusick)), Vec::new())
+            }
+            ClothSpec::Cantilever { overhang, cells } => {
+                if !(overhang.is_finite() && *overhang > 0.0) || *cells < 2 {
+                    return Err(invalid(
+                        "cloth.cantilever",
+                        format!("overhang {overhang} m in {cells} cells: give an overhang > 0 and at least 2 cells"),
+                    ));
+                }
+                let test = Cantilever {
+                    fabric,
+                    overhang: *overhang,
+                    cells: *cells,
+                };
+                let (builder, grid) = test
+                    .simulation_builder()
+                    .map_err(|e| invalid("cloth.cantilever", e.to_string()))?;
+                let builder = builder.settings(self.solver.clone());
+                (
+                    sheet(
+                        builder,
+                        &bodies,
+                        Some(SheetTest::Cantilever {
+                            test: Box::new(test),
+                            grid,
+                        }),
+                    ),
+                    Vec::new(),
+                )
             }
         };
         Ok(Prepared {
@@ -126,6 +208,19 @@ impl SceneFile {
             bodies,
             warnings,
         })
+    }
+}
+
+/// A sheet's run, on the bodies if there are any.
+fn sheet(builder: SimulationBuilder, bodies: &Arc<Bodies>, test: Option<SheetTest>) -> PreparedCloth {
+    let builder = if bodies.bodies().is_empty() {
+        builder
+    } else {
+        builder.collider(bodies.clone())
+    };
+    PreparedCloth::Sheet {
+        builder: Box::new(builder),
+        test,
     }
 }
 
@@ -165,10 +260,12 @@ impl BodySpec {
             self.file.is_some(),
             self.sphere.is_some(),
             self.cuboid.is_some(),
+            self.cylinder.is_some(),
+            self.table.is_some(),
         ];
         if given.iter().filter(|g| **g).count() != 1 {
             return Err(invalid(
-                "give exactly one of mannequin, file, sphere or box".into(),
+                "give exactly one of mannequin, file, sphere, box, cylinder or table".into(),
             ));
         }
         let named = |default: &str| self.name.clone().unwrap_or_else(|| default.to_string());
@@ -195,6 +292,14 @@ impl BodySpec {
         } else if let Some(b) = self.cuboid {
             let half = Vec3::from(b.size) / 2.0;
             vec![(named("box"), TriSurface::cuboid(half).map_err(surface_error)?)]
+        } else if let Some(c) = self.cylinder {
+            let surface = TriSurface::cylinder(c.radius, 0.5 * c.height, 64).map_err(surface_error)?;
+            vec![(named("cylinder"), surface)]
+        } else if let Some(t) = self.table {
+            let half = Vec3::from(t.size) / 2.0;
+            let surface =
+                TriSurface::table(half, t.height, 0.5 * t.leg_width, t.leg_inset).map_err(surface_error)?;
+            vec![(named("table"), surface)]
         } else {
             unreachable!("exactly one shape was checked above")
         };

@@ -66,28 +66,7 @@ pub enum SceneFileError {
         #[source]
         source: MeshError,
     },
-    /// A garment that cannot be made, or a stage that failed.
+    /// A garment that cannot be made.
     #[error(transparent)]
     Garment(#[from] GarmentError),
-    /// The run itself failed (diverged): the scene was valid.
-    #[error("{stage}: {source}")]
-    Run {
-        stage: &'static str,
-        #[source]
-        source: cloth_core::SimError,
-    },
-}
-
-impl SceneFileError {
-    /// Whether the input was at fault (a bad scene, pattern, body or fabric), as opposed to
-    /// a run that failed on valid input.
-    pub fn is_input_error(&self) -> bool {
-        match self {
-            SceneFileError::Run { .. } => false,
-            SceneFileError::Garment(e) => {
-                !matches!(e, GarmentError::Sim { .. } | GarmentError::NotSewn { .. })
-            }
-            _ => true,
-        }
-    }
 }

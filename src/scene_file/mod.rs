@@ -3,14 +3,22 @@
 //! package alike. Paths in it are relative to the scene file.
 
 mod build;
+mod cloth_file;
 mod error;
+mod observer;
+mod recorder;
 mod records;
+mod report;
 mod run;
 
-pub use build::{Prepared, PreparedCloth};
+pub use build::{Prepared, PreparedCloth, SheetTest};
 pub use error::SceneFileError;
+pub use observer::{RunObserver, Unobserved};
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
-pub use run::{RunReport, RunResult, StageReport};
+pub use report::{
+    Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, StrainSummary,
+};
+pub use run::RunResult;
 
 use std::path::{Path, PathBuf};
 

@@ -57,6 +57,44 @@ pub enum ClothSpec {
         #[serde(default)]
         pins: Vec<[usize; 2]>,
     },
+    /// A sheet from a triangle mesh file (OBJ). Its texture coordinates (`vt`, times
+    /// `uv_scale` to metres) are the material coordinates, the warp along u; a file without
+    /// them must be flat, and is its own rest shape with the warp along x. `pins` are vertex
+    /// numbers (from 0) held where they start; the cloth is moved by `position`.
+    Mesh {
+        file: PathBuf,
+        #[serde(default = "one")]
+        scale: f64,
+        #[serde(default = "one")]
+        uv_scale: f64,
+        #[serde(default)]
+        position: [f64; 3],
+        #[serde(default)]
+        pins: Vec<usize>,
+    },
+    /// The Cusick drape test (BS 5058): a 30 cm disk of the fabric, its central 18 cm
+    /// clamped, drapes from flat; the report gives the drape coefficient and the folds.
+    Cusick {
+        #[serde(default = "cusick_edge_length")]
+        edge_length: f64,
+        /// Rayleigh damping added to the fabric's while it settles, s.
+        #[serde(default = "cusick_damping")]
+        damping: f64,
+    },
+    /// The cantilever bending test (ASTM D1388): a 2.5 cm strip along the warp, `overhang`
+    /// m of it beyond the platform's edge in `cells` cells, bends under its own weight; the
+    /// report compares its tip with the inextensible elastica's.
+    Cantilever { overhang: f64, cells: usize },
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn cusick_edge_length() -> f64 {
+    0.0075
+}
+fn cusick_damping() -> f64 {
+    0.01
 }
 
 fn default_edge_length() -> f64 {
@@ -93,6 +131,10 @@ pub struct BodySpec {
     pub sphere: Option<SphereSpec>,
     #[serde(rename = "box")]
     pub cuboid: Option<BoxSpec>,
+    /// Along z, centred on `position`.
+    pub cylinder: Option<CylinderSpec>,
+    /// A table standing on z = 0 below `position` (its top's upper face at `height`).
+    pub table: Option<TableSpec>,
     #[serde(default)]
     pub position: [f64; 3],
     /// Contact thickness, m.
@@ -113,6 +155,32 @@ pub struct BoxSpec {
     pub size: [f64; 3],
 }
 
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderSpec {
+    pub radius: f64,
+    pub height: f64,
+}
+
+/// A table: a top of `size` (width, depth, thickness) on four legs.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TableSpec {
+    pub size: [f64; 3],
+    pub height: f64,
+    #[serde(default = "leg_width")]
+    pub leg_width: f64,
+    #[serde(default = "leg_inset")]
+    pub leg_inset: f64,
+}
+
+fn leg_width() -> f64 {
+    0.06
+}
+fn leg_inset() -> f64 {
+    0.05
+}
+
 /// What a run writes.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -123,6 +191,17 @@ pub struct OutputSpec {
     pub ply: bool,
     /// The bodies as OBJ, to view with the cloth.
     pub bodies: bool,
+    /// The bodies and the cloth (with strain colours) as one glTF binary.
+    pub glb: bool,
+    /// A picture of the final state (bodies and cloth, coloured by warp and weft strain).
+    pub png: bool,
+    /// The picture's width and height, pixels.
+    pub image_size: [u32; 2],
+    /// Write the cloth as OBJ every this many steps of each stage (into `frames/`).
+    pub frames_every: Option<u64>,
+    /// Steps of each stage after which to record the largest warp and weft stretch (the
+    /// source's table of stretch after N iterations).
+    pub checkpoints: Vec<u64>,
 }
 
 impl Default for OutputSpec {
@@ -131,7 +210,32 @@ impl Default for OutputSpec {
             obj: true,
             ply: true,
             bodies: true,
+            glb: true,
+            png: true,
+            image_size: [1600, 1000],
+            frames_every: None,
+            checkpoints: Vec::new(),
         }
+    }
+}
+
+impl OutputSpec {
+    /// What cannot be written: the reason and the key.
+    pub(crate) fn check(&self) -> Result<(), (&'static str, String)> {
+        let [w, h] = self.image_size;
+        if !(16..=8192).contains(&w) || !(16..=8192).contains(&h) {
+            return Err((
+                "output.image_size",
+                format!("{w} x {h} pixels: each side must be 16 to 8192"),
+            ));
+        }
+        if self.frames_every == Some(0) {
+            return Err(("output.frames_every", "must be at least 1 step".into()));
+        }
+        if self.checkpoints.contains(&0) {
+            return Err(("output.checkpoints", "steps count from 1".into()));
+        }
+        Ok(())
     }
 }
 

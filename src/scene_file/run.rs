@@ -1,136 +1,209 @@
-//! Running a prepared scene, and what the run reports.
+//! Running a prepared scene: a garment is sewn and draped, a sheet run to rest. Whatever
+//! happens after the first step, the run ends with a state and a report: a divergence or
+//! an interrupt keeps the last good state and says what happened.
 
-use super::build::{Prepared, PreparedCloth};
+use super::build::{Prepared, PreparedCloth, SheetTest};
+use super::observer::RunObserver;
+use super::recorder::Recorder;
 use super::records::SceneFile;
+use super::report::{Measurement, RunOutcome, RunReport, RunSettings, StrainSummary};
 use super::SceneFileError;
 use crate::garment::sewing::{drape, sew};
-use cloth_core::{ClothMesh, StepStats, StopReason, StrainReport, Vec3};
-use serde::Serialize;
+use crate::garment::GarmentError;
+use cloth_core::{ClothMesh, StopReason, Vec3};
+use std::path::Path;
 use std::time::Instant;
 
-/// What one stage did.
-#[derive(Debug, Clone, Serialize)]
-pub struct StageReport {
-    pub stage: &'static str,
-    pub steps: u64,
-    pub seconds: f64,
-    pub cg_iterations: usize,
-    /// Why it ended: "sewn", "at_rest" or "step_limit".
-    pub ended: &'static str,
-}
-
-/// The run's report (report.json).
-#[derive(Debug, Clone, Serialize)]
-pub struct RunReport {
-    pub scene: String,
-    pub particles: usize,
-    pub triangles: usize,
-    pub stages: Vec<StageReport>,
-    pub total_seconds: f64,
-    /// Warp and weft strain at the end, % (maximum and 99th percentile).
-    pub max_warp: f64,
-    pub max_weft: f64,
-    pub p99_warp: f64,
-    pub p99_weft: f64,
-    /// The deepest any particle is inside a body at the end, m.
-    pub deepest_penetration: f64,
-    /// The widest seam gap when the seams were welded, m (garments only).
-    pub largest_seam_gap: Option<f64>,
-    pub warnings: Vec<String>,
-}
-
-/// The cloth at the end of a run, and the report.
+/// The cloth at the end of a run (the last good state if it failed), and the report.
 pub struct RunResult {
     pub mesh: ClothMesh,
     pub positions: Vec<Vec3>,
     pub report: RunReport,
 }
 
+impl RunResult {
+    /// Whether every stage ran to its end.
+    pub fn finished(&self) -> bool {
+        self.report.outcome == RunOutcome::Finished
+    }
+}
+
 impl Prepared {
-    /// Runs the scene: a garment is sewn and draped, a sheet run to rest. `observe` sees
-    /// every step with its stage's name.
+    /// Runs the scene. `observer` sees every step and may stop the run; frames, if the
+    /// scene asks for them, are written into `frames_dir`. An error means the input was at
+    /// fault and nothing ran; once the first stage has begun, a run that fails (a
+    /// divergence, seams that will not close or weld) or is stopped returns its last good
+    /// state with the outcome in its report.
     pub fn run(
         self,
         scene: &SceneFile,
-        mut observe: impl FnMut(&'static str, &StepStats),
+        frames_dir: Option<&Path>,
+        observer: &mut dyn RunObserver,
     ) -> Result<RunResult, SceneFileError> {
         let start = Instant::now();
         let mut stages = Vec::new();
-        let (sim, gap) = match self.cloth {
+        let mut outcome = RunOutcome::Finished;
+        let mut gap = None;
+        let mut sheet_test = None;
+        let (settings, rec) = match self.cloth {
             PreparedCloth::Garment { garment, fabrics } => {
+                let mut rec = Recorder::new(
+                    observer,
+                    &scene.output,
+                    frames_dir,
+                    &garment.mesh,
+                    garment.mesh.positions(),
+                );
+                rec.begin("sewing", scene.sewing.max_steps);
                 let sewn = sew(
                     &garment,
                     &fabrics,
                     self.bodies.clone(),
                     &scene.sewing,
-                    |_, s, _| observe("sewing", s),
-                )?;
-                stages.push(StageReport {
-                    stage: "sewing",
-                    steps: sewn.report.steps,
-                    seconds: sewn.report.seconds,
-                    cg_iterations: sewn.report.cg_iterations,
-                    ended: "sewn",
-                });
-                let draped = drape(&sewn, self.bodies.clone(), &scene.drape, |_, s| {
-                    observe("draping", s)
-                })?;
-                stages.push(StageReport {
-                    stage: "draping",
-                    steps: draped.outcome.steps,
-                    seconds: draped.seconds,
-                    cg_iterations: draped.cg_iterations,
-                    ended: ended(draped.outcome.reason),
-                });
-                (draped.simulation, Some(sewn.report.max_gap))
+                    |sim, s, _| rec.step(sim, s),
+                );
+                match sewn {
+                    Ok(sewn) => {
+                        stages.push(rec.end("sewn"));
+                        gap = Some(sewn.report.max_gap);
+                        rec.begin("draping", scene.drape.max_steps);
+                        match drape(&sewn, self.bodies.clone(), &scene.drape, |sim, s| {
+                            rec.step(sim, s)
+                        }) {
+                            Ok(draped) => {
+                                stages.push(rec.end(ended(draped.outcome.reason)));
+                                if draped.outcome.reason == StopReason::Stopped {
+                                    outcome = stopped(&rec);
+                                }
+                            }
+                            Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
+                        }
+                    }
+                    Err(GarmentError::Stopped { .. }) => {
+                        stages.push(rec.end("interrupted"));
+                        outcome = stopped(&rec);
+                    }
+                    Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
+                }
+                if outcome != RunOutcome::Finished && stages.len() == 1 {
+                    // Never welded: the gap now.
+                    gap = Some(garment.widest_gap(rec.positions()).1);
+                }
+                (
+                    RunSettings::Garment {
+                        sewing: scene.sewing,
+                        drape: scene.drape,
+                    },
+                    rec,
+                )
             }
-            PreparedCloth::Sheet { builder } => {
+            PreparedCloth::Sheet { builder, test } => {
+                sheet_test = test;
                 let mut sim = builder.build().map_err(|source| SceneFileError::Param {
                     file: scene.name.clone(),
                     source,
                 })?;
-                let stage_start = Instant::now();
-                let mut cg = 0;
-                let outcome = sim
-                    .run_to_rest_with(&scene.rest, |_, s| {
-                        cg += s.cg_iterations;
-                        observe("running", s)
-                    })
-                    .map_err(|source| SceneFileError::Run {
-                        stage: "running",
-                        source,
-                    })?;
-                stages.push(StageReport {
-                    stage: "running",
-                    steps: outcome.steps,
-                    seconds: stage_start.elapsed().as_secs_f64(),
-                    cg_iterations: cg,
-                    ended: ended(outcome.reason),
-                });
-                (sim, None)
+                let mut rec = Recorder::new(observer, &scene.output, frames_dir, sim.mesh(), sim.positions());
+                rec.begin("running", scene.rest.max_steps);
+                match sim.run_to_rest_with(&scene.rest, |sim, s| rec.step(sim, s)) {
+                    Ok(out) => {
+                        stages.push(rec.end(ended(out.reason)));
+                        if out.reason == StopReason::Stopped {
+                            outcome = stopped(&rec);
+                        }
+                    }
+                    Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
+                }
+                (
+                    RunSettings::Sheet {
+                        solver: scene.solver.clone(),
+                        rest: scene.rest,
+                    },
+                    rec,
+                )
             }
         };
-        let strain = StrainReport::new(sim.mesh(), sim.positions());
-        let (deepest, _) = self.bodies.deepest_inside(sim.time(), sim.positions());
+        if let (Some(error), RunOutcome::Interrupted { stage, step }) = (&rec.failure, &outcome) {
+            // The recorder, not the user, stopped it.
+            outcome = RunOutcome::Failed {
+                stage,
+                step: *step,
+                error: error.clone(),
+            };
+        }
+        let (checkpoints, frames) = (rec.checkpoint_rows.clone(), rec.frames.clone());
+        let time = rec.time();
+        let (mesh, positions) = rec.into_state();
+        let (deepest, _) = self.bodies.deepest_inside(time, &positions);
+        let measurement = match (&outcome, sheet_test) {
+            (RunOutcome::Finished, Some(test)) => Some(measure(test, &mesh, &positions)),
+            _ => None,
+        };
         let report = RunReport {
             scene: self.name,
-            particles: sim.mesh().vertex_count(),
-            triangles: sim.mesh().triangles().len(),
+            outcome,
+            particles: mesh.vertex_count(),
+            triangles: mesh.triangles().len(),
+            settings,
             stages,
             total_seconds: start.elapsed().as_secs_f64(),
-            max_warp: strain.max_warp,
-            max_weft: strain.max_weft,
-            p99_warp: strain.p99_warp,
-            p99_weft: strain.p99_weft,
+            simulated_time: time,
+            strain: StrainSummary::of(&mesh, &positions),
             deepest_penetration: deepest,
             largest_seam_gap: gap,
+            checkpoints,
+            measurement,
+            frames,
             warnings: self.warnings.iter().map(ToString::to_string).collect(),
         };
         Ok(RunResult {
-            mesh: sim.mesh().clone(),
-            positions: sim.positions().to_vec(),
+            mesh,
+            positions,
             report,
         })
+    }
+}
+
+/// What a fabric test reads from the sheet at rest.
+fn measure(test: SheetTest, mesh: &ClothMesh, positions: &[Vec3]) -> Measurement {
+    match test {
+        SheetTest::Cusick => {
+            let m = crate::validation::cusick::measure(positions, mesh.triangles());
+            Measurement::Cusick {
+                drape_coefficient: m.drape_coefficient,
+                folds: m.folds,
+            }
+        }
+        SheetTest::Cantilever { test, grid } => {
+            let (drop, reach) = crate::validation::cantilever::tip(positions, grid);
+            Measurement::Cantilever {
+                overhang: test.overhang,
+                gamma: test.gamma(),
+                tip_drop: drop,
+                tip_reach: reach,
+                chord_angle_degrees: drop.atan2(reach).to_degrees(),
+                drop_over_length: drop / test.overhang,
+                elastica_drop_over_length: test.reference_drop(),
+            }
+        }
+    }
+}
+
+/// The outcome of a run its observer stopped.
+fn stopped(rec: &Recorder) -> RunOutcome {
+    RunOutcome::Interrupted {
+        stage: rec.stage(),
+        step: rec.steps(),
+    }
+}
+
+/// Ends the current stage as failed with `error`.
+fn failed(rec: &mut Recorder, stages: &mut Vec<super::StageReport>, error: String) -> RunOutcome {
+    stages.push(rec.end("failed"));
+    RunOutcome::Failed {
+        stage: rec.stage(),
+        step: rec.steps(),
+        error,
     }
 }
 
@@ -138,5 +211,6 @@ fn ended(reason: StopReason) -> &'static str {
     match reason {
         StopReason::AtRest => "at_rest",
         StopReason::StepLimit => "step_limit",
+        StopReason::Stopped => "interrupted",
     }
 }

@@ -7,7 +7,7 @@
 
 use super::elastica::elastica_tip;
 use super::{settle, ValidationError};
-use cloth_core::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder};
+use cloth_core::{Fabric, GridBuilder, GridShape, Pin, RestCriteria, SimulationBuilder, Vec3};
 
 /// Width of the test strip, m.
 pub const STRIP_WIDTH: f64 = 0.025;
@@ -74,6 +74,20 @@ impl Cantilever {
 
     /// Runs the strip to rest (1 nm per step for 20 steps).
     pub fn run(&self) -> Result<CantileverRest, ValidationError> {
+        let (builder, grid) = self.simulation_builder()?;
+        let mut sim = builder.build()?;
+        let criteria = RestCriteria {
+            tolerance: 1e-9,
+            consecutive_steps: 20,
+            max_steps: 5000,
+        };
+        let steps = settle(&mut sim, &criteria, "cantilever")?;
+        let (drop, reach) = tip(sim.positions(), grid);
+        Ok(CantileverRest { drop, reach, steps })
+    }
+
+    /// The strip, flat, its platform part pinned, and its grid (for [`tip`]).
+    pub fn simulation_builder(&self) -> Result<(SimulationBuilder, GridShape), ValidationError> {
         let d = self.overhang / self.cells as f64;
         let across = ((STRIP_WIDTH / d).round() as usize).max(2);
         // Column 0 and 1 are on the platform (two columns fix the slope at the edge).
@@ -83,24 +97,20 @@ impl Cantilever {
             .build()?;
         let g = mesh.grid().expect("a grid mesh");
         let pins = (0..ny).flat_map(|j| [Pin::fixed(g.index(0, j)), Pin::fixed(g.index(1, j))]);
-        let mut sim = SimulationBuilder::new(mesh, self.fabric.clone())
-            .pins(pins)
-            .build()?;
-        let criteria = RestCriteria {
-            tolerance: 1e-9,
-            consecutive_steps: 20,
-            max_steps: 5000,
-        };
-        let steps = settle(&mut sim, &criteria, "cantilever")?;
-        let x = sim.positions();
-        let edge = x[g.index(1, 0)];
-        let mean = |f: &dyn Fn(usize) -> f64| (0..ny).map(f).sum::<f64>() / ny as f64;
-        Ok(CantileverRest {
-            drop: mean(&|j| edge.z - x[g.index(nx - 1, j)].z),
-            reach: mean(&|j| x[g.index(nx - 1, j)].x - edge.x),
-            steps,
-        })
+        Ok((SimulationBuilder::new(mesh, self.fabric.clone()).pins(pins), g))
     }
+}
+
+/// The tip's drop below the platform and its reach beyond the edge, m (means over the tip's
+/// particles), of a strip made by [`Cantilever::simulation_builder`].
+pub fn tip(x: &[Vec3], g: GridShape) -> (f64, f64) {
+    let edge = x[g.index(1, 0)];
+    let last = g.nx - 1;
+    let mean = |f: &dyn Fn(usize) -> f64| (0..g.ny).map(f).sum::<f64>() / g.ny as f64;
+    (
+        mean(&|j| edge.z - x[g.index(last, j)].z),
+        mean(&|j| x[g.index(last, j)].x - edge.x),
+    )
 }
 
 /// The fixed-angle test's result.

@@ -60,6 +60,23 @@ impl CusickTest {
     }
 
     pub fn run(&self) -> Result<CusickResult, ValidationError> {
+        let mut sim = self.simulation_builder()?.build()?;
+        let steps = settle(&mut sim, &self.rest, "Cusick drape")?;
+        let positions = sim.positions().to_vec();
+        let measure = measure(&positions, sim.mesh().triangles());
+        Ok(CusickResult {
+            drape_coefficient: measure.drape_coefficient,
+            folds: measure.folds,
+            outline: measure.outline,
+            steps,
+            positions,
+            triangles: sim.mesh().triangles().to_vec(),
+        })
+    }
+
+    /// The specimen, flat, its centre clamped, ready to drape (with the settling damping
+    /// and time step; the rest criteria are the caller's).
+    pub fn simulation_builder(&self) -> Result<SimulationBuilder, ValidationError> {
         let h = self.edge_length;
         let segments = |r: f64| ((2.0 * PI * r / h).ceil() as usize).max(12);
         let centre = Vector2::zeros();
@@ -71,33 +88,40 @@ impl CusickTest {
             .filter(|&i| mesh.uv()[i].norm() <= clamp)
             .map(Pin::fixed)
             .collect();
-        let triangles = mesh.triangles().to_vec();
         let fabric = self
             .fabric
             .clone()
             .with_damping(self.fabric.damping + self.damping);
-        let mut sim = SimulationBuilder::new(mesh, fabric)
+        Ok(SimulationBuilder::new(mesh, fabric)
             .settings(SolverSettings {
                 time_step: self.time_step,
                 ..SolverSettings::default()
             })
-            .pins(pins)
-            .build()?;
-        let steps = settle(&mut sim, &self.rest, "Cusick drape")?;
-        let positions = sim.positions().to_vec();
-        let shadow = Shadow::new(&positions, &triangles);
-        let a_disk = PI * SUPPORT_RADIUS * SUPPORT_RADIUS;
-        let a_specimen = PI * SPECIMEN_RADIUS * SPECIMEN_RADIUS;
-        let drape_coefficient = 100.0 * (shadow.area() - a_disk) / (a_specimen - a_disk);
-        let outline = shadow.outline(360);
-        Ok(CusickResult {
-            drape_coefficient,
-            folds: count_folds(&outline, FOLD_DEPTH),
-            outline,
-            steps,
-            positions,
-            triangles,
-        })
+            .pins(pins))
+    }
+}
+
+/// What the test reads from a draped specimen.
+#[derive(Debug, Clone)]
+pub struct CusickMeasure {
+    /// Drape coefficient, %.
+    pub drape_coefficient: f64,
+    /// Number of folds (nodes) around the outline.
+    pub folds: usize,
+    /// Radius of the projected outline by angle (one per degree), m.
+    pub outline: Vec<f64>,
+}
+
+/// Reads the drape coefficient and the folds from the specimen's shadow.
+pub fn measure(positions: &[Vec3], triangles: &[[usize; 3]]) -> CusickMeasure {
+    let shadow = Shadow::new(positions, triangles);
+    let a_disk = PI * SUPPORT_RADIUS * SUPPORT_RADIUS;
+    let a_specimen = PI * SPECIMEN_RADIUS * SPECIMEN_RADIUS;
+    let outline = shadow.outline(360);
+    CusickMeasure {
+        drape_coefficient: 100.0 * (shadow.area() - a_disk) / (a_specimen - a_disk),
+        folds: count_folds(&outline, FOLD_DEPTH),
+        outline,
     }
 }
 

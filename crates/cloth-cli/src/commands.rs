@@ -1,14 +1,22 @@
 //! The subcommands: each reads its input, calls the library, and says what happened.
 
+use crate::progress::{Progress, Verbosity};
 use crate::Failure;
 use cloth::garment::mannequin::{Mannequin, Measurements};
 use cloth::presets::FabricLibrary;
-use cloth::scene_file::SceneFile;
+use cloth::scene_file::{RunOutcome, SceneFile};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
-/// `cloth run`: prepare, simulate, write the outputs (also when the run fails, the report
-/// says why).
-pub fn run(scene_path: &Path, out: Option<PathBuf>, force: bool, quiet: bool) -> Result<(), Failure> {
+/// `cloth run`: prepare, simulate, write the outputs. A run that fails or is interrupted
+/// still writes its last good state and a report that says what happened.
+pub fn run(
+    scene_path: &Path,
+    out: Option<PathBuf>,
+    force: bool,
+    verbosity: Verbosity,
+) -> Result<(), Failure> {
     let (scene, dir) = SceneFile::from_path(scene_path).map_err(Failure::input)?;
     let file = scene_path.display().to_string();
     let out = out.unwrap_or_else(|| scene_path.with_extension("out"));
@@ -29,42 +37,49 @@ pub fn run(scene_path: &Path, out: Option<PathBuf>, force: bool, quiet: bool) ->
     }
     std::fs::create_dir_all(&out)
         .map_err(|e| Failure::input(format!("cannot create output folder '{}': {e}", out.display())))?;
+    let interrupted = Arc::new(AtomicBool::new(false));
+    {
+        let flag = interrupted.clone();
+        // A second Ctrl-C gives up on writing the outputs.
+        ctrlc::set_handler(move || {
+            if flag.swap(true, Ordering::Relaxed) {
+                std::process::exit(130);
+            }
+        })
+        .map_err(|e| Failure::run(format!("cannot catch Ctrl-C: {e}")))?;
+    }
     let bodies = prepared.bodies.clone();
-    let mut last_stage = "";
-    let result = prepared.run(&scene, |stage, stats| {
-        if !quiet && (stage != last_stage || stats.step % 50 == 0) {
-            println!(
-                "{stage}: step {}, {:.1} ms",
-                stats.step,
-                1e3 * (stats.assembly_seconds + stats.solve_seconds)
-            );
-            last_stage = stage;
-        }
-    });
-    let result = match result {
-        Ok(r) => r,
-        Err(e) if e.is_input_error() => return Err(Failure::input(e)),
-        Err(e) => {
-            // The run failed on valid input: the report says why.
-            let path = out.join("report.json");
-            let report = serde_json::json!({ "scene": scene.name, "failed": true, "error": e.to_string() });
-            let _ = cloth::obj::write_atomically(&path, |w| writeln!(w, "{report:#}"));
-            return Err(Failure::run(format!("{e} (report in {})", path.display())));
-        }
-    };
+    let mut progress = Progress::new(verbosity, interrupted);
+    let result = prepared.run(&scene, Some(&out.join("frames")), &mut progress);
+    progress.finish();
+    let result = result.map_err(Failure::input)?;
     let written = cloth::output::write_outputs(&out, &result, &bodies, &scene.output)
         .map_err(|e| Failure::run(format!("writing outputs to '{}': {e}", out.display())))?;
-    if !quiet {
-        let r = &result.report;
+    let r = &result.report;
+    if verbosity != Verbosity::Quiet {
         println!(
-            "done in {:.2} s: {} particles, max warp {:.2} %, weft {:.2} %, deepest penetration {:.1e} m",
-            r.total_seconds, r.particles, r.max_warp, r.max_weft, r.deepest_penetration
+            "{} particles, max warp {:.2} %, weft {:.2} %, deepest penetration {:.1e} m, {:.2} s",
+            r.particles, r.strain.max_warp, r.strain.max_weft, r.deepest_penetration, r.total_seconds
         );
         for p in written {
             println!("wrote {}", p.display());
         }
     }
-    Ok(())
+    let report = out.join("report.json");
+    match &r.outcome {
+        RunOutcome::Finished => Ok(()),
+        RunOutcome::Interrupted { stage, step } => Err(Failure {
+            message: format!(
+                "interrupted at {stage} step {step}: the state reached is in '{}'",
+                out.display()
+            ),
+            status: 130,
+        }),
+        RunOutcome::Failed { stage, step, error } => Err(Failure::run(format!(
+            "{error} (the state after {stage} step {step} and the report are in '{}')",
+            report.display()
+        ))),
+    }
 }
 
 /// `cloth check`: everything `run` would read and build, without simulating.

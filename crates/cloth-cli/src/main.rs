@@ -2,6 +2,8 @@
 //! input is at fault (a bad scene, pattern, body or fabric), 1 when a valid run fails.
 
 mod commands;
+mod progress;
+mod render;
 
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -30,8 +32,11 @@ enum Command {
         #[arg(long)]
         force: bool,
         /// Print nothing but errors.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "verbose")]
         quiet: bool,
+        /// Print every step's statistics.
+        #[arg(long)]
+        verbose: bool,
     },
     /// Parse and validate a scene, its patterns, bodies and fabrics, without simulating.
     Check { scene: PathBuf },
@@ -49,6 +54,8 @@ enum Command {
     },
     /// Write a generated mannequin as OBJ.
     Mannequin(MannequinArgs),
+    /// Render meshes (OBJ, PLY) to a PNG picture.
+    Render(render::RenderArgs),
 }
 
 /// The mannequin's measurements, m (the defaults are the shipped average body).
@@ -121,11 +128,20 @@ fn main() -> ExitCode {
             out,
             force,
             quiet,
-        } => commands::run(&scene, out, force, quiet),
+            verbose,
+        } => {
+            let verbosity = match (quiet, verbose) {
+                (true, _) => progress::Verbosity::Quiet,
+                (_, true) => progress::Verbosity::Verbose,
+                _ => progress::Verbosity::Normal,
+            };
+            commands::run(&scene, out, force, verbosity)
+        }
         Command::Check { scene } => commands::check(&scene),
         Command::Fabrics { name } => commands::fabrics(name.as_deref()),
         Command::Bench { steps, quick } => commands::bench(steps, quick),
         Command::Mannequin(args) => commands::mannequin(args.measurements(), &args.output),
+        Command::Render(args) => render::render(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

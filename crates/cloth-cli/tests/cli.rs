@@ -100,7 +100,15 @@ fn mannequin_writes_a_body_that_reads_back() {
 
 #[test]
 fn the_shipped_scenes_check() {
-    for scene in ["dress.toml", "skirt.toml", "tshirt.toml", "sheet_on_sphere.toml"] {
+    for scene in [
+        "dress.toml",
+        "skirt.toml",
+        "tshirt.toml",
+        "sheet_on_sphere.toml",
+        "tablecloth.toml",
+        "cantilever.toml",
+        "cusick.toml",
+    ] {
         let path = assets().join("scenes").join(scene);
         let o = cloth(&["check", path.to_str().unwrap()]);
         assert!(o.status.success(), "{scene}: {}", stderr(&o));
@@ -159,7 +167,7 @@ fn bad_scenes_exit_with_2_and_name_the_place() {
 fn a_run_writes_outputs_that_read_back() {
     let dir = scratch("run");
     let scene = dir.join("sheet.toml");
-    std::fs::write(&scene, SHEET).unwrap();
+    std::fs::write(&scene, format!("{SHEET}\n[output]\nimage_size = [320, 200]\n")).unwrap();
     let out = dir.join("out");
     let o = run_quietly(&scene, &out);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -174,13 +182,31 @@ fn a_run_writes_outputs_that_read_back() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(report["particles"], 144);
-    assert!(report["max_warp"].as_f64().unwrap().is_finite());
+    assert_eq!(report["outcome"]["kind"], "finished");
+    assert!(report["strain"]["max_warp"].as_f64().unwrap().is_finite());
     assert_eq!(report["stages"][0]["steps"], 60);
+    assert_eq!(report["settings"]["rest"]["max_steps"], 60);
     let ply = std::fs::read_to_string(out.join("cloth.ply")).unwrap();
     assert!(
         ply.starts_with("ply\n") && ply.contains("element vertex 144") && ply.contains("property uchar red")
     );
     assert!(out.join("report.md").exists() && out.join("bodies.obj").exists());
+    // The picture decodes at the size asked for.
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(out.join("render.png")).unwrap(),
+    ));
+    let reader = decoder.read_info().unwrap();
+    assert_eq!((reader.info().width, reader.info().height), (320, 200));
+    // The glTF binary holds the cloth (144 particles, z up turned to y up) and the sphere.
+    let (doc, buffers, _) = gltf::import(out.join("scene.glb")).unwrap();
+    let names: Vec<&str> = doc.meshes().filter_map(|m| m.name()).collect();
+    assert_eq!(names, ["cloth", "sphere"]);
+    let cloth = doc.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = cloth.reader(|b| Some(&buffers[b.index()]));
+    let heights: Vec<f32> = reader.read_positions().unwrap().map(|p| p[1]).collect();
+    assert_eq!(heights.len(), 144);
+    // Resting on the sphere of radius 0.3 at the origin: nothing far below its top.
+    assert!(heights.iter().all(|&y| y > -0.35 && y < 0.36), "{heights:?}");
     // The folder is not overwritten without --force.
     let o = run_quietly(&scene, &out);
     assert_eq!(o.status.code(), Some(2));
@@ -198,8 +224,193 @@ fn a_diverging_run_exits_with_1_and_writes_its_report() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
-    assert_eq!(report["failed"], true);
-    assert!(report["error"].as_str().unwrap().contains("step 1"), "{report}");
+    assert_eq!(report["outcome"]["kind"], "failed");
+    assert!(
+        report["outcome"]["error"].as_str().unwrap().contains("step 1"),
+        "{report}"
+    );
+    // The last good state, here the sheet as placed, is written too.
+    let (models, _) = tobj::load_obj(out.join("cloth.obj"), &tobj::LoadOptions::default()).unwrap();
+    assert_eq!(models[0].mesh.positions.len(), 3 * 144);
+    assert!(std::fs::read_to_string(out.join("report.md"))
+        .unwrap()
+        .contains("**Failed**"));
+}
+
+#[test]
+fn ctrl_c_stops_the_run_and_writes_the_state_reached() {
+    use std::io::{BufRead, BufReader};
+    let dir = scratch("interrupt");
+    let scene = dir.join("sheet.toml");
+    // A run far longer than the test waits.
+    std::fs::write(
+        &scene,
+        SHEET
+            .replace("nx = 12", "nx = 40")
+            .replace("ny = 12", "ny = 40")
+            .replace("max_steps = 60", "max_steps = 100000")
+            .replace("tolerance = 1e-5", "tolerance = 1e-12"),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_cloth"))
+        .args(["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Not a terminal: plain lines, the first when the stage begins.
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    let first = lines.next().unwrap().unwrap();
+    assert!(first.starts_with("running: up to 100000 steps"), "{first}");
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let rest: Vec<String> = lines.map_while(Result::ok).collect();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{rest:?}");
+    assert!(
+        rest.iter().any(|l| l.contains("interrupted at running step")),
+        "{rest:?}"
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["outcome"]["kind"], "interrupted", "{report}");
+    let step = report["outcome"]["step"].as_u64().unwrap();
+    assert!((1..100000).contains(&step), "{report}");
+    assert_eq!(report["stages"][0]["steps"].as_u64(), Some(step));
+    let (models, _) = tobj::load_obj(out.join("cloth.obj"), &tobj::LoadOptions::default()).unwrap();
+    assert_eq!(models[0].mesh.positions.len(), 3 * 1600);
+    // The sheet has fallen from where it started.
+    let lowest = models[0]
+        .mesh
+        .positions
+        .chunks(3)
+        .map(|p| p[2])
+        .fold(f64::INFINITY, f64::min);
+    assert!(lowest < 0.35 - 1e-4, "lowest {lowest}");
+}
+
+#[test]
+fn frames_and_checkpoints_are_written_when_asked() {
+    let dir = scratch("frames");
+    let scene = dir.join("sheet.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "{SHEET}
+[output]
+frames_every = 20
+checkpoints = [1, 30, 60]
+glb = false
+png = false
+"
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = run_quietly(&scene, &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let frames = report["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 3, "{report}");
+    for (k, f) in frames.iter().enumerate() {
+        assert_eq!(f["step"].as_u64(), Some(20 * (k as u64 + 1)));
+        let (models, _) = tobj::load_obj(
+            out.join(f["file"].as_str().unwrap()),
+            &tobj::LoadOptions::default(),
+        )
+        .unwrap();
+        assert_eq!(models[0].mesh.positions.len(), 3 * 144);
+    }
+    let rows = report["checkpoints"].as_array().unwrap();
+    let steps: Vec<u64> = rows.iter().map(|r| r["step"].as_u64().unwrap()).collect();
+    assert_eq!(steps, [1, 30, 60]);
+    // The sheet stretches as it lands: more after 60 steps than after 1.
+    assert!(rows[2]["max_warp"].as_f64().unwrap() > rows[0]["max_warp"].as_f64().unwrap());
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("Largest stretch after N steps") && md.contains("| running | 30 |"),
+        "{md}"
+    );
+    assert!(!out.join("cloth.glb").exists() && !out.join("render.png").exists());
+}
+
+#[test]
+fn the_cantilever_scene_bends_like_the_elastica() {
+    let dir = scratch("cantilever");
+    let out = dir.join("out");
+    let o = run_quietly(&assets().join("scenes/cantilever.toml"), &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let m = &report["measurement"];
+    assert_eq!(m["test"], "cantilever", "{report}");
+    let (ours, elastica) = (
+        m["drop_over_length"].as_f64().unwrap(),
+        m["elastica_drop_over_length"].as_f64().unwrap(),
+    );
+    // The discrete strip against the inextensible elastica at the same w L^3 / B.
+    assert!((ours - elastica).abs() < 0.02 * elastica, "{ours} vs {elastica}");
+}
+
+#[test]
+fn a_cloth_from_a_mesh_file_runs_with_its_pins() {
+    let dir = scratch("mesh");
+    // A flat, level 40 cm square of two triangles per cell, held by two corners.
+    let n = 9;
+    let mut obj = String::new();
+    for j in 0..n {
+        for i in 0..n {
+            obj += &format!("v {} {} 1\n", 0.05 * i as f64, 0.05 * j as f64);
+        }
+    }
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = j * n + i + 1;
+            obj += &format!(
+                "f {} {} {}\nf {} {} {}\n",
+                a,
+                a + 1,
+                a + n + 1,
+                a,
+                a + n + 1,
+                a + n
+            );
+        }
+    }
+    std::fs::write(dir.join("sheet.obj"), obj).unwrap();
+    let scene = dir.join("scene.toml");
+    let text = format!(
+        "[cloth.mesh]\nfile = \"sheet.obj\"\npins = [0, {}]\n[fabric]\npreset = \"cotton_poplin\"\n\
+         [rest]\ntolerance = 1e-5\nconsecutive_steps = 5\nmax_steps = 40\n[output]\nglb = false\npng = false\n",
+        n - 1
+    );
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join("out");
+    let o = run_quietly(&scene, &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (models, _) = tobj::load_obj(out.join("cloth.obj"), &tobj::LoadOptions::default()).unwrap();
+    let p = &models[0].mesh.positions;
+    assert_eq!(p.len(), 3 * n * n);
+    // The pinned corners stay; the free corners fall.
+    assert_eq!((p[0], p[1], p[2]), (0.0, 0.0, 1.0));
+    assert!(p[3 * (n * n - 1) + 2] < 0.9, "{}", p[3 * (n * n - 1) + 2]);
+    // A pin past the mesh's vertices names its place.
+    std::fs::write(
+        &scene,
+        std::fs::read_to_string(&scene)
+            .unwrap()
+            .replace("pins = [0,", "pins = [500,"),
+    )
+    .unwrap();
+    let o = cloth(&["check", scene.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("cloth.mesh.pins[0]"), "{}", stderr(&o));
 }
 
 #[test]

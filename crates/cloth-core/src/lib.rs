@@ -25,7 +25,7 @@ pub use fabric::{
     BendingLaw, BendingRigidity, Fabric, KesConversion, KesDirection, KesMeasurement, SourceCoefficients,
     TensileLaw, UnusedKes,
 };
-pub use mesh::{ClothMesh, GridBuilder, GridDiagonals};
+pub use mesh::{ClothMesh, GridBuilder, GridDiagonals, GridShape};
 pub use metrics::{GridStretch, StrainReport};
 pub use solver::{
     Constraint, ConstraintKind, Integrator, PcgSettings, Pin, PinMotion, RestCriteria, RestOutcome, SeamPull,

@@ -49,6 +49,8 @@ impl RestCriteria {
 pub enum StopReason {
     AtRest,
     StepLimit,
+    /// The observer asked to stop (a user's interrupt, say).
+    Stopped,
 }
 
 /// The end of a run to rest.

@@ -8,6 +8,7 @@ use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
 use crate::mesh::ClothMesh;
 use crate::Vec3;
+use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -497,11 +498,12 @@ impl Simulation {
     /// Steps until at rest (every particle moving less than the tolerance per step for the
     /// given number of consecutive steps) or the step limit, and says which.
     pub fn run_to_rest(&mut self, criteria: &RestCriteria) -> Result<RestOutcome, SimError> {
-        self.run_to_rest_with(criteria, |_, _| {})
+        self.run_to_rest_with(criteria, |_, _| ControlFlow::Continue(()))
     }
 
     /// As [`run_to_rest`](Self::run_to_rest), calling `observe` with the simulation and the
-    /// step's statistics after every step.
+    /// step's statistics after every step; when it breaks, the run ends there with
+    /// [`StopReason::Stopped`].
     ///
     /// Near rest the forces, and with them the right-hand side of the implicit solve,
     /// shrink, and a relative tolerance alone would solve ever more precisely for motion
@@ -510,7 +512,7 @@ impl Simulation {
     pub fn run_to_rest_with(
         &mut self,
         criteria: &RestCriteria,
-        mut observe: impl FnMut(&Simulation, &StepStats),
+        mut observe: impl FnMut(&Simulation, &StepStats) -> ControlFlow<()>,
     ) -> Result<RestOutcome, SimError> {
         criteria.validate()?;
         let accuracy = 0.01 * criteria.tolerance / self.settings.time_step;
@@ -518,7 +520,13 @@ impl Simulation {
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
             last = self.step_to(accuracy)?;
-            observe(self, &last);
+            if observe(self, &last).is_break() {
+                return Ok(RestOutcome {
+                    reason: StopReason::Stopped,
+                    steps: k,
+                    last,
+                });
+            }
             calm = if last.max_displacement < criteria.tolerance {
                 calm + 1
             } else {

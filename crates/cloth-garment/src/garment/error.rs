@@ -40,6 +40,9 @@ pub enum GarmentError {
         gap_mm: f64,
         tolerance_mm: f64,
     },
+    /// The observer asked to stop (a user's interrupt, say).
+    #[error("{stage} stopped at step {steps}")]
+    Stopped { stage: &'static str, steps: u64 },
     #[error("{stage}: {source}")]
     Sim {
         stage: &'static str,

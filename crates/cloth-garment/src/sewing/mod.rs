@@ -8,6 +8,7 @@ pub use settings::{DrapeSettings, SewingSettings};
 use crate::garment::{Garment, GarmentError, Welded};
 use cloth_core::{Collider, Fabric, Integrator, RestOutcome, SeamPull, Simulation, SimulationBuilder};
 use cloth_core::{SolverSettings, StepStats, Vec3};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -40,13 +41,13 @@ pub struct Sewn {
 /// [`SewingSettings::ramp_time`] to a force that stretches the cloth by at most
 /// [`SewingSettings::pull_strain`], and extra air drag so panels glide into place. Stops
 /// when every seam gap is under the tolerance, then welds. `observe` sees every step (with
-/// the widest gap, m).
+/// the widest gap, m) and may stop it ([`GarmentError::Stopped`]).
 pub fn sew(
     garment: &Garment,
     panel_fabrics: &[Fabric],
     collider: Arc<dyn Collider>,
     settings: &SewingSettings,
-    mut observe: impl FnMut(&Simulation, &StepStats, f64),
+    mut observe: impl FnMut(&Simulation, &StepStats, f64) -> ControlFlow<()>,
 ) -> Result<Sewn, GarmentError> {
     settings.validate()?;
     if panel_fabrics.len() != garment.panel_names.len() {
@@ -125,7 +126,12 @@ pub fn sew(
         steps += 1;
         cg += stats.cg_iterations;
         gap = garment.widest_gap(sim.positions()).1;
-        observe(&sim, &stats, gap);
+        if observe(&sim, &stats, gap).is_break() {
+            return Err(GarmentError::Stopped {
+                stage: "sewing",
+                steps,
+            });
+        }
     }
     let welded = garment.weld(sim.positions())?;
     Ok(Sewn {
@@ -177,12 +183,12 @@ pub fn drape_simulation(
 }
 
 /// Drapes the sewn garment until at rest (the source's stopping mechanism) or the step
-/// limit. `observe` sees every step.
+/// limit. `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]).
 pub fn drape(
     sewn: &Sewn,
     collider: Arc<dyn Collider>,
     settings: &DrapeSettings,
-    mut observe: impl FnMut(&Simulation, &StepStats),
+    mut observe: impl FnMut(&Simulation, &StepStats) -> ControlFlow<()>,
 ) -> Result<Draped, GarmentError> {
     settings.validate()?;
     let start = Instant::now();

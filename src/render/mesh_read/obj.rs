@@ -1,0 +1,81 @@
+//! OBJ through `tobj`: every object and group merged, polygons split into triangles,
+//! points and lines dropped, vertex colours (`v x y z r g b`) kept when present.
+
+use super::{Colouring, LoadedMesh};
+use crate::render::error::RenderError;
+use crate::render::{MeshColours, RenderMesh, NEUTRAL_GREY};
+use crate::Vec3;
+use std::path::Path;
+
+pub(super) fn read(path: &Path) -> Result<LoadedMesh, RenderError> {
+    let bytes = std::fs::read(path).map_err(|source| RenderError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    // One index per corner into the positions, so neighbouring triangles share vertices
+    // and shading is smooth across them. The struct has more fields when tobj's optional
+    // features are on (another crate may turn them on): they keep their defaults.
+    #[allow(clippy::needless_update)]
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    // Materials are not drawn, so `mtllib` files are not opened.
+    let (models, _) =
+        tobj::load_obj_buf(&mut &bytes[..], &options, |_| Ok(Default::default())).map_err(|e| {
+            RenderError::Parse {
+                path: path.to_path_buf(),
+                line: None,
+                message: e.to_string(),
+            }
+        })?;
+    let any_colours = models.iter().any(|m| has_colours(&m.mesh));
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let mut colours = Vec::new();
+    for model in &models {
+        let mesh = &model.mesh;
+        let first = positions.len();
+        positions.extend(
+            mesh.positions
+                .chunks_exact(3)
+                .map(|c| Vec3::new(c[0], c[1], c[2])),
+        );
+        triangles.extend(
+            mesh.indices
+                .chunks_exact(3)
+                .map(|c| [0, 1, 2].map(|k| first + c[k] as usize)),
+        );
+        if any_colours {
+            if has_colours(mesh) {
+                colours.extend(
+                    mesh.vertex_color
+                        .chunks_exact(3)
+                        .map(|c| [0, 1, 2].map(|k| (c[k].clamp(0.0, 1.0) * 255.0).round() as u8)),
+                );
+            } else {
+                colours.resize(positions.len(), NEUTRAL_GREY);
+            }
+        }
+    }
+    let (colours, colouring) = if any_colours {
+        (MeshColours::PerVertex(colours), Colouring::FromFile)
+    } else {
+        (MeshColours::Uniform(NEUTRAL_GREY), Colouring::Plain)
+    };
+    Ok(LoadedMesh {
+        mesh: RenderMesh {
+            positions,
+            triangles,
+            colours,
+        },
+        colouring,
+    })
+}
+
+fn has_colours(mesh: &tobj::Mesh) -> bool {
+    !mesh.vertex_color.is_empty() && mesh.vertex_color.len() == mesh.positions.len()
+}

@@ -1,0 +1,23 @@
+//! How a caller watches a run step by step (a progress bar, a log) and stops it (Ctrl-C).
+
+use cloth_core::{Simulation, StepStats};
+use std::ops::ControlFlow;
+
+/// Sees a run's stages and steps. Breaking from [`step`](Self::step) stops the run after
+/// that step: the run keeps the state reached and reports itself interrupted.
+pub trait RunObserver {
+    /// A stage begins: its name and its step limit (a run to rest usually ends sooner).
+    fn stage(&mut self, _stage: &'static str, _max_steps: u64) {}
+
+    /// After every step of `stage`.
+    fn step(&mut self, stage: &'static str, sim: &Simulation, stats: &StepStats) -> ControlFlow<()>;
+}
+
+/// An observer that watches nothing and never stops a run.
+pub struct Unobserved;
+
+impl RunObserver for Unobserved {
+    fn step(&mut self, _: &'static str, _: &Simulation, _: &StepStats) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+}

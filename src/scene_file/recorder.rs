@@ -1,0 +1,168 @@
+//! Between the stages' step loops and the caller's observer: keeps the last good state (so
+//! a failed or interrupted run still has something to write), times the stages, writes
+//! frames and takes the checkpoints the scene asks for.
+
+use super::observer::RunObserver;
+use super::records::OutputSpec;
+use super::report::{Checkpoint, FrameRecord, StageReport, StrainSummary};
+use crate::obj::write_cloth_obj_with_uv;
+use cloth_core::{ClothMesh, Simulation, StepStats, Vec3};
+use std::ops::ControlFlow;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+pub(super) struct Recorder<'a> {
+    observer: &'a mut dyn RunObserver,
+    frames_every: u64,
+    checkpoints: &'a [u64],
+    frames_dir: Option<&'a Path>,
+    /// The last good state: the mesh is replaced when a stage changes it (welding).
+    mesh: ClothMesh,
+    positions: Vec<Vec3>,
+    /// Simulated time of the last good state, s.
+    time: f64,
+    stage: &'static str,
+    stage_start: Instant,
+    /// This stage's steps, CG iterations and step times (ms).
+    steps: u64,
+    cg: usize,
+    step_ms: Vec<f64>,
+    pub(super) checkpoint_rows: Vec<Checkpoint>,
+    pub(super) frames: Vec<FrameRecord>,
+    /// Why the recorder itself stopped the run (a frame it could not write).
+    pub(super) failure: Option<String>,
+}
+
+impl<'a> Recorder<'a> {
+    /// Starts from the cloth as placed.
+    pub(super) fn new(
+        observer: &'a mut dyn RunObserver,
+        output: &'a OutputSpec,
+        frames_dir: Option<&'a Path>,
+        mesh: &ClothMesh,
+        positions: &[Vec3],
+    ) -> Self {
+        Self {
+            observer,
+            frames_every: output.frames_every.unwrap_or(0),
+            checkpoints: &output.checkpoints,
+            frames_dir,
+            mesh: mesh.clone(),
+            positions: positions.to_vec(),
+            time: 0.0,
+            stage: "",
+            stage_start: Instant::now(),
+            steps: 0,
+            cg: 0,
+            step_ms: Vec::new(),
+            checkpoint_rows: Vec::new(),
+            frames: Vec::new(),
+            failure: None,
+        }
+    }
+
+    pub(super) fn begin(&mut self, stage: &'static str, max_steps: u64) {
+        self.stage = stage;
+        self.stage_start = Instant::now();
+        self.steps = 0;
+        self.cg = 0;
+        self.step_ms.clear();
+        self.observer.stage(stage, max_steps);
+    }
+
+    /// The stage's report, ended as `ended`.
+    pub(super) fn end(&self, ended: &'static str) -> StageReport {
+        StageReport {
+            stage: self.stage,
+            steps: self.steps,
+            seconds: self.stage_start.elapsed().as_secs_f64(),
+            cg_iterations: self.cg,
+            ended,
+        }
+    }
+
+    pub(super) fn stage(&self) -> &'static str {
+        self.stage
+    }
+
+    pub(super) fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    pub(super) fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    pub(super) fn time(&self) -> f64 {
+        self.time
+    }
+
+    pub(super) fn into_state(self) -> (ClothMesh, Vec<Vec3>) {
+        (self.mesh, self.positions)
+    }
+
+    /// After every step of the current stage.
+    pub(super) fn step(&mut self, sim: &Simulation, stats: &StepStats) -> ControlFlow<()> {
+        if self.steps == 0 {
+            // A stage may run on a new mesh (the welded garment).
+            self.mesh.clone_from(sim.mesh());
+        }
+        self.positions.clear();
+        self.positions.extend_from_slice(sim.positions());
+        self.time = sim.time();
+        self.steps += 1;
+        self.cg += stats.cg_iterations;
+        self.step_ms
+            .push(1e3 * (stats.assembly_seconds + stats.solve_seconds + stats.contact_seconds));
+        if self.checkpoints.contains(&self.steps) {
+            let strain = StrainSummary::of(sim.mesh(), sim.positions());
+            self.checkpoint_rows.push(Checkpoint {
+                stage: self.stage,
+                step: self.steps,
+                time: sim.time(),
+                max_warp: strain.max_warp,
+                max_weft: strain.max_weft,
+                median_step_ms: median(&self.step_ms),
+            });
+        }
+        if self.frames_every > 0 && self.steps.is_multiple_of(self.frames_every) {
+            if let Err(e) = self.write_frame(sim) {
+                self.failure = Some(e);
+                return ControlFlow::Break(());
+            }
+        }
+        self.observer.step(self.stage, sim, stats)
+    }
+
+    fn write_frame(&mut self, sim: &Simulation) -> Result<(), String> {
+        let Some(dir) = self.frames_dir else {
+            return Ok(());
+        };
+        let name = format!("frame_{:05}.obj", self.frames.len() + 1);
+        let path: PathBuf = dir.join(&name);
+        std::fs::create_dir_all(dir)
+            .and_then(|()| write_cloth_obj_with_uv(&path, sim.mesh(), sim.positions()))
+            .map_err(|e| format!("writing frame '{}': {e}", path.display()))?;
+        let folder = dir
+            .file_name()
+            .map(|f| f.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        self.frames.push(FrameRecord {
+            file: format!("{folder}/{name}"),
+            stage: self.stage,
+            step: self.steps,
+            time: sim.time(),
+        });
+        Ok(())
+    }
+}
+
+fn median(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => v[n / 2],
+        n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
+}

@@ -1,0 +1,144 @@
+//! What a run reports (report.json; report.md says the same in tables).
+
+use crate::garment::sewing::{DrapeSettings, SewingSettings};
+use cloth_core::{ClothMesh, RestCriteria, SolverSettings, StrainReport, Vec3};
+use serde::Serialize;
+
+/// What one stage did.
+#[derive(Debug, Clone, Serialize)]
+pub struct StageReport {
+    pub stage: &'static str,
+    pub steps: u64,
+    pub seconds: f64,
+    pub cg_iterations: usize,
+    /// Why it ended: "sewn", "at_rest", "step_limit", "interrupted" or "failed".
+    pub ended: &'static str,
+}
+
+/// How the whole run ended.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum RunOutcome {
+    /// Every stage ran to its end (at rest, or its step limit: see the stages).
+    Finished,
+    /// The observer stopped it (Ctrl-C): the outputs hold the state after `step`.
+    Interrupted { stage: &'static str, step: u64 },
+    /// A stage failed (a divergence, seams that would not close): the outputs hold the last
+    /// good state, after `step` of `stage`.
+    Failed {
+        stage: &'static str,
+        step: u64,
+        error: String,
+    },
+}
+
+/// The settings the run used.
+#[derive(Debug, Clone, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum RunSettings {
+    Garment {
+        sewing: SewingSettings,
+        drape: DrapeSettings,
+    },
+    Sheet {
+        solver: SolverSettings,
+        rest: RestCriteria,
+    },
+}
+
+/// The largest stretch at a step the scene asked about: the source's table of maximum
+/// warp and weft stretch after N iterations.
+#[derive(Debug, Clone, Serialize)]
+pub struct Checkpoint {
+    pub stage: &'static str,
+    pub step: u64,
+    /// Simulated time, s.
+    pub time: f64,
+    /// %.
+    pub max_warp: f64,
+    pub max_weft: f64,
+    /// Median wall time per step so far in this stage, ms.
+    pub median_step_ms: f64,
+}
+
+/// The strain of a cloth state, %.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct StrainSummary {
+    pub max_warp: f64,
+    pub max_weft: f64,
+    pub p99_warp: f64,
+    pub p99_weft: f64,
+}
+
+impl StrainSummary {
+    pub fn of(mesh: &ClothMesh, positions: &[Vec3]) -> Self {
+        let s = StrainReport::new(mesh, positions);
+        Self {
+            max_warp: s.max_warp,
+            max_weft: s.max_weft,
+            p99_warp: s.p99_warp,
+            p99_weft: s.p99_weft,
+        }
+    }
+}
+
+/// The run's report (report.json).
+#[derive(Debug, Clone, Serialize)]
+pub struct RunReport {
+    pub scene: String,
+    pub outcome: RunOutcome,
+    pub particles: usize,
+    pub triangles: usize,
+    pub settings: RunSettings,
+    pub stages: Vec<StageReport>,
+    pub total_seconds: f64,
+    /// The simulated time of the final state (of its stage), s.
+    pub simulated_time: f64,
+    /// Warp and weft strain of the final state.
+    pub strain: StrainSummary,
+    /// The deepest any particle is inside a body at the end, m.
+    pub deepest_penetration: f64,
+    /// The widest seam gap: when the seams were welded, or at the end if they never were,
+    /// m (garments only).
+    pub largest_seam_gap: Option<f64>,
+    pub checkpoints: Vec<Checkpoint>,
+    /// What a fabric test reads from the cloth at rest (a finished run of a test scene).
+    pub measurement: Option<Measurement>,
+    /// Frames written, if the scene asked for them.
+    pub frames: Vec<FrameRecord>,
+    pub warnings: Vec<String>,
+}
+
+/// A fabric test's reading.
+#[derive(Debug, Clone, Serialize)]
+#[serde(tag = "test", rename_all = "snake_case")]
+pub enum Measurement {
+    Cusick {
+        /// Drape coefficient, %.
+        drape_coefficient: f64,
+        folds: usize,
+    },
+    Cantilever {
+        /// m.
+        overhang: f64,
+        /// w L^3 / B.
+        gamma: f64,
+        /// The tip's drop below the platform and reach beyond its edge, m.
+        tip_drop: f64,
+        tip_reach: f64,
+        chord_angle_degrees: f64,
+        drop_over_length: f64,
+        /// The inextensible elastica's drop / L at the same gamma.
+        elastica_drop_over_length: f64,
+    },
+}
+
+/// One frame file of the run.
+#[derive(Debug, Clone, Serialize)]
+pub struct FrameRecord {
+    /// Relative to the output folder.
+    pub file: String,
+    pub stage: &'static str,
+    pub step: u64,
+    pub time: f64,
+}
