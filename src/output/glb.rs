@@ -10,10 +10,10 @@
 //! over its triangles of the larger of warp and weft strain, compression as 0; its full
 //! scale is in the cloth node's `extras`.
 
-use super::ply::{colour, FULL_SCALE_PERCENT};
+use super::strain_colours::{colour, vertex_strain, FULL_SCALE_PERCENT};
 use crate::collide::TriSurface;
 use crate::obj::write_atomically;
-use cloth_core::{ClothMesh, StrainReport, Vec3};
+use cloth_core::{ClothMesh, Vec3};
 use gltf_json::accessor::{ComponentType, GenericComponentType, Type};
 use gltf_json::buffer::Target;
 use gltf_json::material::{PbrBaseColorFactor, PbrMetallicRoughness, StrengthFactor};
@@ -106,7 +106,7 @@ impl Document {
         }
         let positions = y_up(cloth.positions, "cloth")?;
         let normals = vertex_normals(cloth.positions, mesh.triangles().iter().copied());
-        let strain = vertex_strain(mesh, cloth.positions);
+        let strain = vertex_colours(mesh, cloth.positions);
 
         let split = Split::new(mesh)?;
         let per_split =
@@ -403,17 +403,7 @@ fn vertex_normals(points: &[Vec3], triangles: impl Iterator<Item = [usize; 3]>) 
 
 /// Each vertex's strain colour as the PLY has it, in linear RGB: glTF vertex colours are
 /// linear, and the viewer's sRGB output then shows the PLY's sRGB colours.
-fn vertex_strain(mesh: &ClothMesh, positions: &[Vec3]) -> Vec<[f32; 3]> {
-    let strain = StrainReport::new(mesh, positions);
-    let n = mesh.vertex_count();
-    let (mut sum, mut count) = (vec![0.0; n], vec![0u32; n]);
-    for (t, tri) in mesh.triangles().iter().enumerate() {
-        let s = strain.warp[t].max(strain.weft[t]).max(0.0);
-        for &i in tri {
-            sum[i] += s;
-            count[i] += 1;
-        }
-    }
+fn vertex_colours(mesh: &ClothMesh, positions: &[Vec3]) -> Vec<[f32; 3]> {
     let linear = |c: u8| {
         let c = f32::from(c) / 255.0;
         if c <= 0.04045 {
@@ -422,9 +412,9 @@ fn vertex_strain(mesh: &ClothMesh, positions: &[Vec3]) -> Vec<[f32; 3]> {
             ((c + 0.055) / 1.055).powf(2.4)
         }
     };
-    sum.iter()
-        .zip(&count)
-        .map(|(s, &k)| colour(s / f64::from(k.max(1)) / FULL_SCALE_PERCENT).map(linear))
+    vertex_strain(mesh, positions)
+        .iter()
+        .map(|s| colour(s / FULL_SCALE_PERCENT).map(linear))
         .collect()
 }
 

@@ -27,6 +27,10 @@ pub use run::render_run;
 use crate::collide::TriSurface;
 use crate::Vec3;
 
+/// The picture sizes drawn, pixels a side: smaller has no room for the titles, larger is
+/// surely a typo.
+pub const IMAGE_SIDES: std::ops::RangeInclusive<u32> = 32..=16384;
+
 /// The grey of bodies, and of meshes that bring no colours of their own.
 pub const NEUTRAL_GREY: [u8; 3] = [190, 190, 194];
 

@@ -7,7 +7,7 @@ use super::image::Image;
 use super::legend::Legend;
 use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
 use crate::collide::TriSurface;
-use crate::output::{colour, FULL_SCALE_PERCENT};
+use crate::output::{colour, vertex_means, FULL_SCALE_PERCENT};
 use crate::{ClothMesh, StrainReport, Vec3};
 
 /// Two panels, "warp strain" and "weft strain", each the bodies in grey and the cloth
@@ -54,21 +54,6 @@ pub fn render_run(
         caption: "strain".to_string(),
     };
     figure(&panels, Some(&legend), &View::default(), width, height)
-}
-
-/// Per vertex, the mean over its triangles of the stretch (negative values count as 0).
-fn vertex_means(vertices: usize, triangles: &[[usize; 3]], per_triangle: &[f64]) -> Vec<f64> {
-    let (mut sum, mut count) = (vec![0.0; vertices], vec![0u32; vertices]);
-    for (t, value) in triangles.iter().zip(per_triangle) {
-        for &i in t {
-            sum[i] += value.max(0.0);
-            count[i] += 1;
-        }
-    }
-    sum.iter()
-        .zip(&count)
-        .map(|(s, &c)| s / c.max(1) as f64)
-        .collect()
 }
 
 #[cfg(test)]

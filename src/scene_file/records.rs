@@ -223,10 +223,15 @@ impl OutputSpec {
     /// What cannot be written: the reason and the key.
     pub(crate) fn check(&self) -> Result<(), (&'static str, String)> {
         let [w, h] = self.image_size;
-        if !(16..=8192).contains(&w) || !(16..=8192).contains(&h) {
+        let sides = crate::render::IMAGE_SIDES;
+        if !sides.contains(&w) || !sides.contains(&h) {
             return Err((
                 "output.image_size",
-                format!("{w} x {h} pixels: each side must be 16 to 8192"),
+                format!(
+                    "{w} x {h} pixels: each side must be {} to {}",
+                    sides.start(),
+                    sides.end()
+                ),
             ));
         }
         if self.frames_every == Some(0) {

@@ -129,6 +129,22 @@ pub fn fabrics(name: Option<&str>) -> Result<(), Failure> {
                 "membrane secant stiffness at 1 % strain: {:.1} N/m",
                 preset.fabric.membrane_stiffness()
             );
+            let kes = cloth::KesMeasurement::from_fabric(&preset.fabric);
+            println!(
+                "KES-F units (as the model reads them):\n  W {:.3} mg/cm2, T {:.3} mm, MIU {:.3}",
+                kes.w,
+                kes.t,
+                kes.miu.unwrap_or(f64::NAN)
+            );
+            for (name, d) in [("warp (1)", &kes.warp), ("weft (2)", &kes.weft)] {
+                println!(
+                    "  {name}: EMT {:.3} %, LT {:.3}, WT {:.3} gf cm/cm2, G {:.3} gf/(cm deg), B {:.4} gf cm2/cm",
+                    d.emt, d.lt, d.wt, d.g, d.b
+                );
+            }
+            for u in &preset.unused {
+                println!("  unused {} = {}: {}", u.field, u.value, u.reason);
+            }
         }
     }
     Ok(())

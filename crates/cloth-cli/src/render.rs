@@ -3,12 +3,10 @@
 //! colours are told apart by neutral tints.
 
 use crate::Failure;
-use cloth::render::{figure, read_render_mesh, Colouring, Legend, MeshColours, Panel, View, NEUTRAL_GREY};
+use cloth::render::{
+    figure, read_render_mesh, Colouring, Legend, MeshColours, Panel, View, IMAGE_SIDES, NEUTRAL_GREY,
+};
 use std::path::PathBuf;
-
-/// Pictures smaller than this have no room for the titles; larger ones are surely typos.
-const MIN_SIZE: u32 = 32;
-const MAX_SIZE: u32 = 16384;
 
 /// Tints for meshes without colours, in order of the files: grey first (the body, as a
 /// rule), then soft hues that read as different materials without shouting.
@@ -45,9 +43,11 @@ pub struct RenderArgs {
 
 pub fn render(args: &RenderArgs) -> Result<(), Failure> {
     for (name, value) in [("--width", args.width), ("--height", args.height)] {
-        if !(MIN_SIZE..=MAX_SIZE).contains(&value) {
+        if !IMAGE_SIDES.contains(&value) {
             return Err(Failure::input(format!(
-                "{name} {value} is out of range: use {MIN_SIZE} to {MAX_SIZE} pixels"
+                "{name} {value} is out of range: use {} to {} pixels",
+                IMAGE_SIDES.start(),
+                IMAGE_SIDES.end()
             )));
         }
     }

@@ -66,7 +66,8 @@ fn fabrics_lists_and_shows_presets() {
     );
     let o = cloth(&["fabrics", "silk"]);
     assert!(o.status.success());
-    assert!(String::from_utf8_lossy(&o.stdout).contains("area_density"));
+    let shown = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(shown.contains("area_density") && shown.contains("EMT") && shown.contains("gf cm2/cm"), "{shown}");
     let o = cloth(&["fabrics", "tweed"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
@@ -161,6 +162,13 @@ fn bad_scenes_exit_with_2_and_name_the_place() {
     let (code, e) = check_text(&dir, &SHEET.replace("[fabric]", "pins = [[20, 0]]\n[fabric]"));
     assert_eq!(code, Some(2));
     assert!(e.contains("cloth.grid.pins[0]"), "{e}");
+    // Outputs that cannot be: a picture of 5 pixels, frames every 0 steps.
+    let (code, e) = check_text(&dir, &format!("{SHEET}\n[output]\nimage_size = [5, 400]\n"));
+    assert_eq!(code, Some(2));
+    assert!(e.contains("output.image_size") && e.contains("5 x 400"), "{e}");
+    let (code, e) = check_text(&dir, &format!("{SHEET}\n[output]\nframes_every = 0\n"));
+    assert_eq!(code, Some(2));
+    assert!(e.contains("output.frames_every"), "{e}");
 }
 
 #[test]

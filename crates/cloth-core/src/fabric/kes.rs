@@ -249,4 +249,79 @@ impl KesMeasurement {
         self.weft.unused(&WEFT, &mut unused);
         Ok(KesConversion { fabric, unused })
     }
+
+    /// The KES-F values of an SI fabric, as the instruments would read them off the model:
+    /// EMT where the tensile curve reaches 500 gf/cm, WT the energy under it to there, LT
+    /// their ratio to the linear curve's, G from the one shear modulus in both directions,
+    /// B, W, T and MIU converted. The inverse of [`to_fabric`](Self::to_fabric) on the
+    /// values it uses (G comes back as the mean of the two directions').
+    pub fn from_fabric(fabric: &Fabric) -> KesMeasurement {
+        let tension = KES_MAX_TENSION_GF_CM * GF_PER_CM;
+        let direction = |law: &TensileLaw, b: f64| {
+            let strain = law.strain_at(tension);
+            let wt = law.extension(strain).energy;
+            KesDirection {
+                emt: 100.0 * strain,
+                lt: wt / (0.5 * tension * strain),
+                wt: wt / GF_CM_PER_CM2,
+                rt: None,
+                g: fabric.shear_modulus / GF_PER_CM_DEGREE,
+                two_hg: None,
+                two_hg5: None,
+                b: b / GF_CM2_PER_CM,
+                two_hb: None,
+            }
+        };
+        KesMeasurement {
+            w: fabric.area_density / MG_PER_CM2,
+            t: fabric.thickness * 1e3,
+            miu: Some(fabric.friction),
+            warp: direction(&fabric.warp, fabric.bending.warp),
+            weft: direction(&fabric.weft, fabric.bending.weft),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn direction(emt: f64, lt: f64, g: f64, b: f64) -> KesDirection {
+        KesDirection {
+            emt,
+            lt,
+            // WT consistent with LT: LT * Fm * EMT / 2.
+            wt: lt * KES_MAX_TENSION_GF_CM * emt / 100.0 / 2.0,
+            rt: None,
+            g,
+            two_hg: None,
+            two_hg5: None,
+            b,
+            two_hb: None,
+        }
+    }
+
+    #[test]
+    fn from_fabric_reads_back_the_record_it_was_made_from() {
+        // A power-law warp (LT < 1) and a two-segment weft (LT > 1).
+        let kes = KesMeasurement {
+            w: 13.2,
+            t: 0.31,
+            miu: Some(0.21),
+            warp: direction(4.1, 0.72, 0.9, 0.084),
+            weft: direction(7.9, 1.12, 0.7, 0.052),
+        };
+        let back = KesMeasurement::from_fabric(&kes.to_fabric().unwrap().fabric);
+        let close = |a: f64, b: f64, what: &str| assert!((a - b).abs() <= 1e-9 * b.abs(), "{what}: {a} vs {b}");
+        close(back.w, kes.w, "W");
+        close(back.t, kes.t, "T");
+        close(back.miu.unwrap(), 0.21, "MIU");
+        for (b, k, name) in [(&back.warp, &kes.warp, "warp"), (&back.weft, &kes.weft, "weft")] {
+            close(b.emt, k.emt, &format!("{name} EMT"));
+            close(b.lt, k.lt, &format!("{name} LT"));
+            close(b.wt, k.wt, &format!("{name} WT"));
+            close(b.b, k.b, &format!("{name} B"));
+            close(b.g, 0.8, &format!("{name} G (the mean)"));
+        }
+    }
 }
