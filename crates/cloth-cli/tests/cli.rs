@@ -67,7 +67,10 @@ fn fabrics_lists_and_shows_presets() {
     let o = cloth(&["fabrics", "silk"]);
     assert!(o.status.success());
     let shown = String::from_utf8_lossy(&o.stdout).into_owned();
-    assert!(shown.contains("area_density") && shown.contains("EMT") && shown.contains("gf cm2/cm"), "{shown}");
+    assert!(
+        shown.contains("area_density") && shown.contains("EMT") && shown.contains("gf cm2/cm"),
+        "{shown}"
+    );
     let o = cloth(&["fabrics", "tweed"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
@@ -400,8 +403,20 @@ fn a_cloth_from_a_mesh_file_runs_with_its_pins() {
     );
     std::fs::write(&scene, text).unwrap();
     let out = dir.join("out");
-    let o = run_quietly(&scene, &out);
+    let o = cloth(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--verbose",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // --verbose: every step's statistics.
+    let e = stderr(&o);
+    assert!(
+        e.contains("running step 1:") && e.contains("running step 40:") && e.contains("CG iterations"),
+        "{e}"
+    );
     let (models, _) = tobj::load_obj(out.join("cloth.obj"), &tobj::LoadOptions::default()).unwrap();
     let p = &models[0].mesh.positions;
     assert_eq!(p.len(), 3 * n * n);

@@ -312,7 +312,8 @@ mod tests {
             weft: direction(7.9, 1.12, 0.7, 0.052),
         };
         let back = KesMeasurement::from_fabric(&kes.to_fabric().unwrap().fabric);
-        let close = |a: f64, b: f64, what: &str| assert!((a - b).abs() <= 1e-9 * b.abs(), "{what}: {a} vs {b}");
+        let close =
+            |a: f64, b: f64, what: &str| assert!((a - b).abs() <= 1e-9 * b.abs(), "{what}: {a} vs {b}");
         close(back.w, kes.w, "W");
         close(back.t, kes.t, "T");
         close(back.miu.unwrap(), 0.21, "MIU");
