@@ -13,7 +13,7 @@ mod run;
 
 pub use build::{Prepared, PreparedCloth, SheetTest};
 pub use error::SceneFileError;
-pub use observer::{RunObserver, Unobserved};
+pub use observer::RunObserver;
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
 pub use report::{
     Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, StrainSummary,

@@ -12,12 +12,3 @@ pub trait RunObserver {
     /// After every step of `stage`.
     fn step(&mut self, stage: &'static str, sim: &Simulation, stats: &StepStats) -> ControlFlow<()>;
 }
-
-/// An observer that watches nothing and never stops a run.
-pub struct Unobserved;
-
-impl RunObserver for Unobserved {
-    fn step(&mut self, _: &'static str, _: &Simulation, _: &StepStats) -> ControlFlow<()> {
-        ControlFlow::Continue(())
-    }
-}
