@@ -9,48 +9,43 @@
 //! stable, found by trial) and after 100 and 500 of implicit Euler at 1/60 s, with the
 //! time per iteration.
 //!
-//! The draped dress and the mannequin are written as OBJ to `target/dress-example/` (or `--out`).
+//! The dress is the main job's scene, `assets/scenes/dress.toml` (the pattern, fabric,
+//! body, stages and edge length); `cloth run` on it writes the outputs and the picture.
 //!
-//!     cargo run --release --example dress [-- --edge 0.0123] [--repeat 3] [--experiment] [--out DIR]
+//!     cargo run --release --example dress [-- --edge 0.0123] [--repeat 3] [--experiment]
 
 use cloth::collide::Bodies;
-use cloth::garment::mannequin::{Mannequin, Measurements};
-use cloth::garment::sewing::{drape, drape_simulation, sew, DrapeSettings, SewingSettings, Sewn};
-use cloth::garment::{Garment, GarmentBuilder, Pattern};
-use cloth::presets::FabricLibrary;
+use cloth::garment::sewing::{drape, drape_simulation, sew, Sewn};
+use cloth::garment::Garment;
+use cloth::scene_file::{ClothSpec, PreparedCloth, SceneFile};
 use cloth::{Fabric, Integrator, SolverSettings, StrainReport};
 use std::ops::ControlFlow;
-use std::path::PathBuf;
+use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-const PATTERN: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/patterns/dress.toml");
-const FABRIC: &str = "cotton_poplin";
-/// At about 12,000 particles, the source's model size.
-const EDGE_LENGTH: f64 = 0.0123;
+const SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/dress.toml");
 
 struct Args {
-    edge: f64,
+    /// Overrides the scene's edge length, m.
+    edge: Option<f64>,
     repeat: usize,
     experiment: bool,
-    out: Option<PathBuf>,
 }
 
 fn parse() -> Result<Args, String> {
     let mut args = Args {
-        edge: EDGE_LENGTH,
+        edge: None,
         repeat: 1,
         experiment: false,
-        out: Some(PathBuf::from("target/dress-example")),
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
         match a.as_str() {
-            "--edge" => args.edge = value("--edge")?.parse().map_err(|e| format!("--edge: {e}"))?,
+            "--edge" => args.edge = Some(value("--edge")?.parse().map_err(|e| format!("--edge: {e}"))?),
             "--repeat" => args.repeat = value("--repeat")?.parse().map_err(|e| format!("--repeat: {e}"))?,
             "--experiment" => args.experiment = true,
-            "--out" => args.out = Some(PathBuf::from(value("--out")?)),
             other => return Err(format!("unknown argument '{other}'")),
         }
     }
@@ -59,7 +54,7 @@ fn parse() -> Result<Args, String> {
 
 fn main() {
     let args = parse().unwrap_or_else(|e| {
-        eprintln!("error: {e}\nusage: dress [--edge M] [--repeat N] [--experiment] [--out DIR]");
+        eprintln!("error: {e}\nusage: dress [--edge M] [--repeat N] [--experiment]");
         std::process::exit(2);
     });
     if let Err(e) = run(&args) {
@@ -69,18 +64,23 @@ fn main() {
 }
 
 fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
-    let pattern = Pattern::from_toml_path(PATTERN.as_ref())?;
-
-    let mannequin = Mannequin::new(&Measurements::default())?;
-    let bodies = Arc::new(Bodies::new(mannequin.bodies()));
+    let (mut scene, dir) = SceneFile::from_path(SCENE.as_ref())?;
+    if let (Some(edge), ClothSpec::Garment { edge_length, .. }) = (args.edge, &mut scene.cloth) {
+        *edge_length = edge;
+    }
     if args.experiment {
-        return experiment(&pattern, &bodies, args);
+        return experiment(&scene, &dir);
     }
     let mut runs = Vec::new();
     for run in 0..args.repeat {
         let start = Instant::now();
-        let (garment, sewn, meshing) = sew_dress(&pattern, &bodies, args.edge)?;
-        let draped = drape(&sewn, bodies.clone(), &DrapeSettings::default(), |_, _| {
+        let SewnDress {
+            garment,
+            sewn,
+            bodies,
+            meshing,
+        } = sew_dress(&scene, &dir)?;
+        let draped = drape(&sewn, bodies.clone(), &scene.drape, |_, _| {
             ControlFlow::Continue(())
         })?;
         let total = start.elapsed().as_secs_f64();
@@ -105,11 +105,6 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             strain.max_weft,
             depth
         );
-        if let Some(dir) = &args.out {
-            std::fs::create_dir_all(dir)?;
-            cloth::obj::write_cloth_obj(&dir.join("dress.obj"), sim.positions(), sim.mesh().triangles())?;
-            mannequin.write_obj(&dir.join("mannequin.obj"))?;
-        }
         runs.push((
             total,
             meshing,
@@ -136,37 +131,45 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-/// The first two stages: the panels meshed at `edge` and placed (the seconds this took
-/// are returned too), then sewn.
-fn sew_dress(
-    pattern: &Pattern,
-    bodies: &Arc<Bodies>,
-    edge: f64,
-) -> Result<(Garment, Sewn, f64), Box<dyn std::error::Error>> {
+/// The dress after the first two stages.
+struct SewnDress {
+    garment: Garment,
+    sewn: Sewn,
+    bodies: Arc<Bodies>,
+    /// Seconds to prepare the scene: mesh and place the panels, make the body.
+    meshing: f64,
+}
+
+/// The first two stages: the scene prepared, then sewn.
+fn sew_dress(scene: &SceneFile, dir: &Path) -> Result<SewnDress, Box<dyn std::error::Error>> {
     let start = Instant::now();
-    let garment = GarmentBuilder::new(pattern.clone()).edge_length(edge).build()?;
+    let prepared = scene.prepare(SCENE, dir)?;
     let meshing = start.elapsed().as_secs_f64();
-    let library = FabricLibrary::builtin();
-    let fabrics = library.panel_fabrics(&garment, &library.fabric(FABRIC)?)?;
+    let PreparedCloth::Garment { garment, fabrics } = prepared.cloth else {
+        return Err("the dress scene is not a garment".into());
+    };
     let sewn = sew(
         &garment,
         &fabrics,
-        bodies.clone(),
-        &SewingSettings::default(),
+        prepared.bodies.clone(),
+        &scene.sewing,
         |_, _, _| ControlFlow::Continue(()),
     )?;
-    Ok((garment, sewn, meshing))
+    Ok(SewnDress {
+        garment: *garment,
+        sewn,
+        bodies: prepared.bodies,
+        meshing,
+    })
 }
 
 /// The source's table from the sewn dress.
-fn experiment(
-    pattern: &Pattern,
-    bodies: &Arc<Bodies>,
-    args: &Args,
-) -> Result<(), Box<dyn std::error::Error>> {
-    let (_, sewn, _) = sew_dress(pattern, bodies, args.edge)?;
+fn experiment(scene: &SceneFile, dir: &Path) -> Result<(), Box<dyn std::error::Error>> {
+    let SewnDress { sewn, bodies, .. } = sew_dress(scene, dir)?;
+    let bodies = &bodies;
     println!(
-        "basic dress, {} particles after welding, {FABRIC}",
+        "{}, {} particles after welding",
+        scene.name,
         sewn.welded.mesh.vertex_count()
     );
     println!("| integrator | h, s | iterations | max warp (horizontal) stretch | max weft (vertical) stretch | ms per iteration (median) |");

@@ -1,16 +1,13 @@
 //! The standard benchmark scenes behind `cloth bench`: a fixed set of runs whose time per
 //! step and CG iterations are printed as JSON, to track speed over time.
 
-use crate::collide::Bodies;
-use crate::garment::mannequin::{Mannequin, Measurements};
-use crate::garment::sewing::{drape_simulation, sew, SewingSettings};
-use crate::garment::{GarmentBuilder, Pattern};
-use crate::presets::FabricLibrary;
+use crate::garment::sewing::{drape_simulation, sew};
+use crate::scene_file::{ClothSpec, PreparedCloth, SceneFile};
 use crate::scenes::SphereDrop;
 use cloth_core::{Fabric, GridBuilder, Pin, Simulation, SimulationBuilder, SolverSettings, Vec3};
 use serde::Serialize;
 use std::ops::ControlFlow;
-use std::sync::Arc;
+use std::path::Path;
 use std::time::Instant;
 
 /// One benchmark's figures.
@@ -53,30 +50,20 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
     let scene = drop.build().map_err(|x| e(&x))?;
     results.push(time_steps("sheet_on_sphere", scene.simulation, steps)?);
 
-    let pattern = Pattern::from_toml_str(include_str!("../assets/patterns/dress.toml"), "dress.toml")
-        .map_err(|x| e(&x))?;
-    let edge = if quick { 0.035 } else { 0.0123 };
-    let garment = GarmentBuilder::new(pattern)
-        .edge_length(edge)
-        .build()
-        .map_err(|x| e(&x))?;
-    let mannequin = Mannequin::new(&Measurements::default()).map_err(|x| e(&x))?;
-    let bodies = Arc::new(Bodies::new(mannequin.bodies()));
-    let fabrics = FabricLibrary::builtin()
-        .panel_fabrics(
-            &garment,
-            &FabricLibrary::builtin()
-                .fabric("cotton_poplin")
-                .map_err(|x| e(&x))?,
-        )
-        .map_err(|x| e(&x))?;
-    let sewn = sew(
-        &garment,
-        &fabrics,
-        bodies.clone(),
-        &SewingSettings::default(),
-        |_, _, _| ControlFlow::Continue(()),
-    )
+    // The main job's scene, so the benchmark drapes what `cloth run` does.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let (mut scene, dir) = SceneFile::from_path(&dir.join("dress.toml")).map_err(|x| e(&x))?;
+    if let (true, ClothSpec::Garment { edge_length, .. }) = (quick, &mut scene.cloth) {
+        *edge_length = 0.035;
+    }
+    let prepared = scene.prepare("dress.toml", &dir).map_err(|x| e(&x))?;
+    let PreparedCloth::Garment { garment, fabrics } = prepared.cloth else {
+        return Err("the dress scene is not a garment".into());
+    };
+    let bodies = prepared.bodies;
+    let sewn = sew(&garment, &fabrics, bodies.clone(), &scene.sewing, |_, _, _| {
+        ControlFlow::Continue(())
+    })
     .map_err(|x| e(&x))?;
     let sim = drape_simulation(&sewn, bodies, SolverSettings::default(), 0.0).map_err(|x| e(&x))?;
     results.push(time_steps("dress_drape", sim, steps)?);

@@ -10,7 +10,7 @@
 //! over its triangles of the larger of warp and weft strain, compression as 0; its full
 //! scale is in the cloth node's `extras`.
 
-use super::strain_colours::{colour, vertex_strain, FULL_SCALE_PERCENT};
+use super::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use crate::collide::TriSurface;
 use crate::obj::write_atomically;
 use cloth_core::{ClothMesh, Vec3};
@@ -414,7 +414,7 @@ fn vertex_colours(mesh: &ClothMesh, positions: &[Vec3]) -> Vec<[f32; 3]> {
     };
     vertex_strain(mesh, positions)
         .iter()
-        .map(|s| colour(s / FULL_SCALE_PERCENT).map(linear))
+        .map(|&s| strain_colour(s).map(linear))
         .collect()
 }
 

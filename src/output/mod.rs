@@ -10,7 +10,7 @@ mod strain_colours;
 pub use glb::{write_glb, GlbCloth};
 pub use ply::write_strain_ply;
 pub use report::write_report;
-pub use strain_colours::{colour, vertex_means, vertex_strain, FULL_SCALE_PERCENT};
+pub use strain_colours::{colour, strain_colour, vertex_means, vertex_strain, FULL_SCALE_PERCENT};
 
 use crate::collide::{Bodies, TriSurface};
 use crate::obj::write_cloth_obj_with_uv;

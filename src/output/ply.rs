@@ -2,7 +2,7 @@
 //! of its triangles (mean over them), blue at 0 % through green and yellow to red at 5 %
 //! and beyond; compression is shown as 0.
 
-use super::strain_colours::{colour, vertex_strain, FULL_SCALE_PERCENT};
+use super::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use crate::obj::write_atomically;
 use cloth_core::{ClothMesh, Vec3};
 use std::path::Path;
@@ -25,7 +25,7 @@ pub fn write_strain_ply(path: &Path, mesh: &ClothMesh, positions: &[Vec3]) -> st
         writeln!(out, "element face {}", mesh.triangles().len())?;
         writeln!(out, "property list uchar int vertex_indices\nend_header")?;
         for (p, &s) in positions.iter().zip(&strain) {
-            let [r, g, b] = colour(s / FULL_SCALE_PERCENT);
+            let [r, g, b] = strain_colour(s);
             writeln!(out, "{} {} {} {r} {g} {b} {s}", p.x, p.y, p.z)?;
         }
         for t in mesh.triangles() {

@@ -48,8 +48,10 @@ pub fn colour(f: f64) -> [u8; 3] {
     let x = f * 4.0;
     let k = (x.floor() as usize).min(3);
     let w = x - k as f64;
-    let c: Vec<u8> = (0..3)
-        .map(|j| ((stops[k][j] * (1.0 - w) + stops[k + 1][j] * w) * 255.0).round() as u8)
-        .collect();
-    [c[0], c[1], c[2]]
+    [0, 1, 2].map(|j| ((stops[k][j] * (1.0 - w) + stops[k + 1][j] * w) * 255.0).round() as u8)
+}
+
+/// The colour of a strain of `percent` % on the scale.
+pub fn strain_colour(percent: f64) -> [u8; 3] {
+    colour(percent / FULL_SCALE_PERCENT)
 }

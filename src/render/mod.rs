@@ -31,6 +31,19 @@ use crate::Vec3;
 /// surely a typo.
 pub const IMAGE_SIDES: std::ops::RangeInclusive<u32> = 32..=16384;
 
+/// Whether a picture of `width` x `height` pixels can be drawn; if not, why.
+pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
+    if IMAGE_SIDES.contains(&width) && IMAGE_SIDES.contains(&height) {
+        Ok(())
+    } else {
+        Err(format!(
+            "{width} x {height} pixels: each side must be {} to {}",
+            IMAGE_SIDES.start(),
+            IMAGE_SIDES.end()
+        ))
+    }
+}
+
 /// The grey of bodies, and of meshes that bring no colours of their own.
 pub const NEUTRAL_GREY: [u8; 3] = [190, 190, 194];
 

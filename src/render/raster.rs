@@ -284,9 +284,8 @@ impl Pixels {
                     }
                 }
                 let at = r * self.stride + self.x_offset + 3 * px;
-                let Some(out) = chunk.get_mut(at..at + 3) else {
-                    continue;
-                };
+                // The row's width was clipped to the image, so the pixel is in it.
+                let out = &mut chunk[at..at + 3];
                 let mut sum = [0, 1, 2].map(|j| out[j] as u32 * empty);
                 for &(tri, count, l) in &seen[..distinct] {
                     let t = &tris[tri as usize];

@@ -7,7 +7,7 @@ use super::image::Image;
 use super::legend::Legend;
 use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
 use crate::collide::TriSurface;
-use crate::output::{colour, vertex_means, FULL_SCALE_PERCENT};
+use crate::output::{strain_colour, vertex_means};
 use crate::{ClothMesh, StrainReport, Vec3};
 
 /// Two panels, "warp strain" and "weft strain", each the bodies in grey and the cloth
@@ -35,7 +35,7 @@ pub fn render_run(
         colours: MeshColours::PerVertex(
             vertex_means(mesh.vertex_count(), mesh.triangles(), per_triangle)
                 .into_iter()
-                .map(|s| colour(s / FULL_SCALE_PERCENT))
+                .map(strain_colour)
                 .collect(),
         ),
     };
@@ -81,7 +81,7 @@ mod tests {
         let image = render_run(&mesh, &positions, &[sphere], w, h);
         assert_eq!((image.width, image.height), (w, h));
         // 3 % on a 5 % scale is yellow-green; 0 % is pure blue.
-        let expected = colour(3.0 / FULL_SCALE_PERCENT);
+        let expected = strain_colour(3.0);
         let like = |p: [u8; 3], c: [u8; 3]| {
             let (r, g, b) = (p[0] as f64, p[1] as f64, p[2] as f64);
             let sum = r + g + b + 1.0;
@@ -102,7 +102,7 @@ mod tests {
         let half = w / 2;
         let warp_panel = count(0, half, expected);
         let weft_panel = count(half, w, expected);
-        let weft_blue = count(half, w, colour(0.0));
+        let weft_blue = count(half, w, strain_colour(0.0));
         assert!(warp_panel > 20_000, "warp panel: {warp_panel} stretched pixels");
         assert!(
             weft_panel < warp_panel / 20,

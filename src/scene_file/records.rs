@@ -223,17 +223,7 @@ impl OutputSpec {
     /// What cannot be written: the reason and the key.
     pub(crate) fn check(&self) -> Result<(), (&'static str, String)> {
         let [w, h] = self.image_size;
-        let sides = crate::render::IMAGE_SIDES;
-        if !sides.contains(&w) || !sides.contains(&h) {
-            return Err((
-                "output.image_size",
-                format!(
-                    "{w} x {h} pixels: each side must be {} to {}",
-                    sides.start(),
-                    sides.end()
-                ),
-            ));
-        }
+        crate::render::check_image_size(w, h).map_err(|reason| ("output.image_size", reason))?;
         if self.frames_every == Some(0) {
             return Err(("output.frames_every", "must be at least 1 step".into()));
         }

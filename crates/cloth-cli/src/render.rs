@@ -4,7 +4,7 @@
 
 use crate::Failure;
 use cloth::render::{
-    figure, read_render_mesh, Colouring, Legend, MeshColours, Panel, View, IMAGE_SIDES, NEUTRAL_GREY,
+    check_image_size, figure, read_render_mesh, Colouring, Legend, MeshColours, Panel, View, NEUTRAL_GREY,
 };
 use std::path::PathBuf;
 
@@ -42,15 +42,8 @@ pub struct RenderArgs {
 }
 
 pub fn render(args: &RenderArgs) -> Result<(), Failure> {
-    for (name, value) in [("--width", args.width), ("--height", args.height)] {
-        if !IMAGE_SIDES.contains(&value) {
-            return Err(Failure::input(format!(
-                "{name} {value} is out of range: use {} to {} pixels",
-                IMAGE_SIDES.start(),
-                IMAGE_SIDES.end()
-            )));
-        }
-    }
+    check_image_size(args.width, args.height)
+        .map_err(|e| Failure::input(format!("--width, --height: {e}")))?;
     for (name, value) in [("--azimuth", args.azimuth), ("--elevation", args.elevation)] {
         if !value.is_finite() {
             return Err(Failure::input(format!(

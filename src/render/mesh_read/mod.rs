@@ -4,7 +4,8 @@ mod obj;
 mod ply;
 
 use super::error::RenderError;
-use super::RenderMesh;
+use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
+use crate::Vec3;
 use std::path::Path;
 
 /// Where a read mesh's colours came from.
@@ -26,6 +27,27 @@ pub struct LoadedMesh {
 }
 
 impl LoadedMesh {
+    /// A mesh whose per-vertex `colours` are used unless its colouring is plain.
+    fn new(
+        positions: Vec<Vec3>,
+        triangles: Vec<[usize; 3]>,
+        colours: Vec<[u8; 3]>,
+        colouring: Colouring,
+    ) -> Self {
+        let colours = match colouring {
+            Colouring::Plain => MeshColours::Uniform(NEUTRAL_GREY),
+            _ => MeshColours::PerVertex(colours),
+        };
+        Self {
+            mesh: RenderMesh {
+                positions,
+                triangles,
+                colours,
+            },
+            colouring,
+        }
+    }
+
     /// Its colours mean strain, so a picture of it needs the strain legend.
     pub fn wants_legend(&self) -> bool {
         self.colouring == Colouring::Strain
@@ -67,17 +89,6 @@ fn check(path: &Path, mesh: &RenderMesh) -> Result<(), RenderError> {
             index,
             message: format!("non-finite coordinate in ({}, {}, {})", p.x, p.y, p.z),
         });
-    }
-    let count = mesh.positions.len();
-    for (face, t) in mesh.triangles.iter().enumerate() {
-        if let Some(&vertex) = t.iter().find(|&&i| i >= count) {
-            return Err(RenderError::IndexOutOfRange {
-                path: path.to_path_buf(),
-                face,
-                vertex,
-                count,
-            });
-        }
     }
     if mesh.triangles.is_empty() {
         return Err(RenderError::NoTriangles {

@@ -3,7 +3,7 @@
 
 use super::{Colouring, LoadedMesh};
 use crate::render::error::RenderError;
-use crate::render::{MeshColours, RenderMesh, NEUTRAL_GREY};
+use crate::render::NEUTRAL_GREY;
 use crate::Vec3;
 use std::path::Path;
 
@@ -13,15 +13,10 @@ pub(super) fn read(path: &Path) -> Result<LoadedMesh, RenderError> {
         source,
     })?;
     // One index per corner into the positions, so neighbouring triangles share vertices
-    // and shading is smooth across them. The struct has more fields when tobj's optional
-    // features are on (another crate may turn them on): they keep their defaults.
-    #[allow(clippy::needless_update)]
+    // and shading is smooth across them.
     let options = tobj::LoadOptions {
         single_index: false,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-        ..Default::default()
+        ..tobj::GPU_LOAD_OPTIONS
     };
     // Materials are not drawn, so `mtllib` files are not opened.
     let (models, _) =
@@ -61,19 +56,12 @@ pub(super) fn read(path: &Path) -> Result<LoadedMesh, RenderError> {
             }
         }
     }
-    let (colours, colouring) = if any_colours {
-        (MeshColours::PerVertex(colours), Colouring::FromFile)
+    let colouring = if any_colours {
+        Colouring::FromFile
     } else {
-        (MeshColours::Uniform(NEUTRAL_GREY), Colouring::Plain)
+        Colouring::Plain
     };
-    Ok(LoadedMesh {
-        mesh: RenderMesh {
-            positions,
-            triangles,
-            colours,
-        },
-        colouring,
-    })
+    Ok(LoadedMesh::new(positions, triangles, colours, colouring))
 }
 
 fn has_colours(mesh: &tobj::Mesh) -> bool {

@@ -4,9 +4,8 @@
 //! scale; otherwise red, green and blue are used if present.
 
 use super::{Colouring, LoadedMesh};
-use crate::output::{colour, FULL_SCALE_PERCENT};
+use crate::output::strain_colour;
 use crate::render::error::RenderError;
-use crate::render::{MeshColours, RenderMesh, NEUTRAL_GREY};
 use crate::Vec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Property, PropertyType};
@@ -81,7 +80,7 @@ pub(super) fn read(path: &Path) -> Result<LoadedMesh, RenderError> {
         };
         positions.push(Vec3::new(get("x")?, get("y")?, get("z")?));
         match colouring {
-            Colouring::Strain => colours.push(colour(get("strain")? / FULL_SCALE_PERCENT)),
+            Colouring::Strain => colours.push(strain_colour(get("strain")?)),
             Colouring::FromFile => {
                 let channel = |name: &str| {
                     v.get(name)
@@ -123,18 +122,7 @@ pub(super) fn read(path: &Path) -> Result<LoadedMesh, RenderError> {
         }
     }
 
-    let colours = match colouring {
-        Colouring::Plain => MeshColours::Uniform(NEUTRAL_GREY),
-        _ => MeshColours::PerVertex(colours),
-    };
-    Ok(LoadedMesh {
-        mesh: RenderMesh {
-            positions,
-            triangles,
-            colours,
-        },
-        colouring,
-    })
+    Ok(LoadedMesh::new(positions, triangles, colours, colouring))
 }
 
 /// The parser nests its messages over several lines, quoting the line at each level:

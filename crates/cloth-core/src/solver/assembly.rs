@@ -217,10 +217,6 @@ impl ForceModel {
         (model, matrix)
     }
 
-    /// The first fabric (the only one unless triangles name others).
-    pub fn fabric(&self) -> &Fabric {
-        &self.fabrics[0]
-    }
     pub fn fabrics(&self) -> &[Fabric] {
         &self.fabrics
     }
@@ -670,7 +666,7 @@ mod tests {
         );
         // The same sum, element by element, in dense form.
         let mut dense = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
-        let fab = model.fabric().clone();
+        let fab = model.fabrics()[0].clone();
         let [warp, weft] = ThreadLaw::of(&fab);
         let mut add = |ids: &[usize], h: &nalgebra::DMatrix<f64>| {
             for (a, &i) in ids.iter().enumerate() {

@@ -287,10 +287,6 @@ impl Simulation {
     pub fn mesh(&self) -> &ClothMesh {
         &self.mesh
     }
-    /// The fabric (the first, when triangles are of several).
-    pub fn fabric(&self) -> &Fabric {
-        self.model.fabric()
-    }
     pub fn fabrics(&self) -> &[Fabric] {
         self.model.fabrics()
     }

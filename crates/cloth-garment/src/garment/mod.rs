@@ -195,15 +195,16 @@ impl Garment {
     /// The seam with the widest gap at `positions`, and that gap, m (checked every
     /// sewing step, so it allocates nothing).
     pub fn widest_gap(&self, positions: &[Vec3]) -> (usize, f64) {
+        // Compared squared: one square root per call, not per pair.
         let mut widest = (0, 0.0);
         for (s, seam) in self.seams.iter().enumerate() {
             for &[a, b] in &seam.pairs {
-                let gap = (positions[a] - positions[b]).norm();
-                if gap > widest.1 {
-                    widest = (s, gap);
+                let gap2 = (positions[a] - positions[b]).norm_squared();
+                if gap2 > widest.1 {
+                    widest = (s, gap2);
                 }
             }
         }
-        widest
+        (widest.0, widest.1.sqrt())
     }
 }

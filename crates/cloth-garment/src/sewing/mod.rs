@@ -87,11 +87,10 @@ pub fn sew(
         gravity: Vec3::zeros(),
         ..SolverSettings::default()
     };
-    let pairs = garment.seam_pairs();
     let mut sim = SimulationBuilder::new(garment.mesh.clone(), fabrics[0].clone())
         .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
-        .seams(pairs.clone())
+        .seams(garment.seam_pairs())
         .collider(collider)
         .build()?;
     // The softest fabric sets the pull, so no panel stretches further.
@@ -101,11 +100,10 @@ pub fn sew(
         .fold(f64::INFINITY, f64::min);
     let pull = settings.pull_strain * softest * seam_spacing(garment);
     let mut cg = 0;
-    let mut gap = garment.widest_gap(sim.positions()).1;
+    let (mut seam, mut gap) = garment.widest_gap(sim.positions());
     let mut steps = 0;
     while gap >= settings.gap_tolerance {
         if steps == settings.max_steps {
-            let (seam, gap) = garment.widest_gap(sim.positions());
             return Err(GarmentError::NotSewn {
                 steps,
                 seam: garment.seams[seam].name.clone(),
@@ -125,7 +123,7 @@ pub fn sew(
         })?;
         steps += 1;
         cg += stats.cg_iterations;
-        gap = garment.widest_gap(sim.positions()).1;
+        (seam, gap) = garment.widest_gap(sim.positions());
         if observe(&sim, &stats, gap).is_break() {
             return Err(GarmentError::Stopped {
                 stage: "sewing",
