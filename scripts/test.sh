@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The project's test command: every suite, from a fresh clone, with only the Rust
-# toolchain installed. Later suites (Python) add themselves here. Ends with one line
-# totalling every suite, since cargo's own last line is that of the (empty) doc tests.
+# toolchain, Python 3.11 and pip installed. The Rust suites run first; then a virtual
+# environment (target/python-venv) gets the Python package built from this tree by
+# `pip install .` (maturin) and the Python suites run under pytest. Ends with one line
+# totalling every suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,14 +11,41 @@ if ! command -v cargo >/dev/null 2>&1; then
     echo "cargo not found: install the Rust toolchain (https://rustup.rs)" >&2
     exit 1
 fi
+python=""
+for candidate in python3.11 python3 python; do
+    if command -v "$candidate" >/dev/null 2>&1 \
+        && "$candidate" -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null; then
+        python=$candidate
+        break
+    fi
+done
+if [ -z "$python" ]; then
+    echo "Python 3.11 or newer not found: the Python package's tests need it" >&2
+    exit 1
+fi
 
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
-# Optimised build: the physics tests run thousands of steps.
+# Optimised build: the physics tests run thousands of steps. The Python module is tested
+# from Python below (it cannot be linked into a Rust test binary).
 set +e
-cargo test --workspace --release --locked 2>&1 | tee "$log"
-status=${PIPESTATUS[0]}
+cargo test --workspace --exclude cloth-py --release --locked 2>&1 | tee "$log"
+rust_status=${PIPESTATUS[0]}
+set -e
+
+venv=target/python-venv
+if [ ! -x "$venv/bin/python" ]; then
+    "$python" -m venv "$venv"
+fi
+# `pip install .` is how users install it: maturin builds the extension (abi3, Python
+# 3.11+) from this tree, against Cargo.lock.
+export MATURIN_PEP517_ARGS="--locked"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ".[test]"
+
+set +e
+CLOTH_BIN="$PWD/target/release/cloth" "$venv/bin/python" -m pytest python/tests -p no:cacheprovider 2>&1 | tee -a "$log"
+py_status=${PIPESTATUS[0]}
 set -e
 
 passed=0
@@ -25,6 +54,16 @@ while read -r p f; do
     passed=$((passed + p))
     failed=$((failed + f))
 done < <(sed -nE 's/^test result: [A-Za-z]+\. ([0-9]+) passed; ([0-9]+) failed.*/\1 \2/p' "$log")
+# pytest's summary: "== 3 failed, 40 passed in 12.3s ==" (either part may be missing).
+summary=$(grep -E '^=+ .*(passed|failed|error).* in [0-9.]+s' "$log" | tail -1 || true)
+py_passed=$(sed -nE 's/.* ([0-9]+) passed.*/\1/p' <<<"$summary")
+py_failed=$(sed -nE 's/.* ([0-9]+) failed.*/\1/p' <<<"$summary")
+py_errors=$(sed -nE 's/.* ([0-9]+) errors?.*/\1/p' <<<"$summary")
+passed=$((passed + ${py_passed:-0}))
+failed=$((failed + ${py_failed:-0} + ${py_errors:-0}))
 echo
 echo "all suites: $passed passed, $failed failed"
-exit "$status"
+if [ "$rust_status" -ne 0 ]; then
+    exit "$rust_status"
+fi
+exit "$py_status"

@@ -75,7 +75,7 @@ impl SceneFile {
 
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for (k, spec) in self.bodies.iter().enumerate() {
-            bodies.extend(spec.build(file, dir, k)?);
+            bodies.extend(spec.build(file, dir, &format!("bodies[{k}]"))?);
         }
         let bodies = Arc::new(Bodies::new(bodies));
 
@@ -242,9 +242,10 @@ impl FabricSpec {
 }
 
 impl BodySpec {
-    /// The bodies this entry makes (a mannequin with arms makes three).
-    fn build(&self, file: &str, dir: &Path, k: usize) -> Result<Vec<Body>, SceneFileError> {
-        let key = format!("bodies[{k}]");
+    /// The bodies this entry makes (a mannequin with arms makes three). `file` and `key`
+    /// name the entry in errors; relative paths start at `dir`.
+    pub fn build(&self, file: &str, dir: &Path, key: &str) -> Result<Vec<Body>, SceneFileError> {
+        let key = key.to_string();
         let invalid = |reason: String| SceneFileError::Invalid {
             file: file.into(),
             key: key.clone(),

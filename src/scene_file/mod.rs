@@ -5,6 +5,7 @@
 mod build;
 mod cloth_file;
 mod error;
+mod folder;
 mod observer;
 mod recorder;
 mod records;
@@ -12,7 +13,9 @@ mod report;
 mod run;
 
 pub use build::{Prepared, PreparedCloth, SheetTest};
+pub use cloth_file::read_cloth_obj;
 pub use error::SceneFileError;
+pub use folder::{claim_output_folder, FolderRun, RunFolderError};
 pub use observer::RunObserver;
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
 pub use report::{

@@ -4,7 +4,7 @@ use crate::progress::{Progress, Verbosity};
 use crate::Failure;
 use cloth::garment::mannequin::{Mannequin, Measurements};
 use cloth::presets::FabricLibrary;
-use cloth::scene_file::{RunOutcome, SceneFile};
+use cloth::scene_file::{claim_output_folder, FolderRun, RunFolderError, RunOutcome, SceneFile};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -20,23 +20,12 @@ pub fn run(
     let (scene, dir) = SceneFile::from_path(scene_path).map_err(Failure::input)?;
     let file = scene_path.display().to_string();
     let out = out.unwrap_or_else(|| scene_path.with_extension("out"));
-    if out.exists()
-        && !force
-        && std::fs::read_dir(&out)
-            .map(|mut d| d.next().is_some())
-            .unwrap_or(true)
-    {
-        return Err(Failure::input(format!(
-            "output folder '{}' exists and is not empty: pass --force to write into it",
-            out.display()
-        )));
-    }
+    claim_output_folder(&out, force)
+        .map_err(|e| Failure::input(format!("{e}: pass --force to write into it")))?;
     let prepared = scene.prepare(&file, &dir).map_err(Failure::input)?;
     for w in &prepared.warnings {
         eprintln!("warning: {w}");
     }
-    std::fs::create_dir_all(&out)
-        .map_err(|e| Failure::input(format!("cannot create output folder '{}': {e}", out.display())))?;
     let interrupted = Arc::new(AtomicBool::new(false));
     {
         let flag = interrupted.clone();
@@ -48,13 +37,13 @@ pub fn run(
         })
         .map_err(|e| Failure::run(format!("cannot catch Ctrl-C: {e}")))?;
     }
-    let bodies = prepared.bodies.clone();
     let mut progress = Progress::new(verbosity, interrupted);
-    let result = prepared.run(&scene, Some(&out.join("frames")), &mut progress);
+    let run = prepared.run_into(&scene, &out, &mut progress);
     progress.finish();
-    let result = result.map_err(Failure::input)?;
-    let written = cloth::output::write_outputs(&out, &result, &bodies, &scene.output)
-        .map_err(|e| Failure::run(format!("writing outputs to '{}': {e}", out.display())))?;
+    let FolderRun { result, written } = run.map_err(|e| match e {
+        RunFolderError::Write { .. } => Failure::run(e),
+        e => Failure::input(e),
+    })?;
     let r = &result.report;
     if verbosity != Verbosity::Quiet {
         println!(

@@ -366,6 +366,32 @@ impl Simulation {
         }
         Ok(())
     }
+    /// Moves the particles (one finite point per particle). Pins keep their targets, so a
+    /// pinned particle moved here goes back to its pin in the next step.
+    pub fn set_positions(&mut self, x: &[Vec3]) -> Result<(), ParamError> {
+        if x.len() != self.x.len() {
+            return Err(ParamError::OutOfRange {
+                name: "positions",
+                value: x.len() as f64,
+                expected: "one position per particle",
+            });
+        }
+        if let Some(c) = x.iter().flat_map(|xi| xi.iter()).find(|c| !c.is_finite()) {
+            return Err(ParamError::OutOfRange {
+                name: "positions",
+                value: *c,
+                expected: "finite components",
+            });
+        }
+        self.x.copy_from_slice(x);
+        // The warm start and the contact states were of the old configuration.
+        self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
+        if let Some(c) = &mut self.contacts {
+            c.particles
+                .refresh(c.collider.as_ref(), self.time, &self.x, self.settings.parallel);
+        }
+        Ok(())
+    }
     pub fn kinetic_energy(&self) -> f64 {
         kinetic_energy(self.model.masses(), &self.v)
     }

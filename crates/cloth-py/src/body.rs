@@ -1,0 +1,306 @@
+//! `cloth.Body`: a rigid body built as a scene's `[[bodies]]` entry is, so the checks and
+//! messages are the scene file's.
+
+use crate::arrays::{index_array, points as read_points, vec3_array};
+use crate::convert::to_toml;
+use crate::errors::input;
+use cloth::collide::{Bodies, TriSurface};
+use cloth::scene_file::BodySpec;
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A rigid body the cloth drapes on: a closed triangle surface placed at `position`, with
+/// a contact `thickness` (m) and a `friction` coefficient (the fabric's when None). A
+/// mannequin with arms is one Body of three parts.
+#[pyclass(frozen, module = "cloth")]
+#[derive(Clone)]
+pub struct Body {
+    name: String,
+    pub parts: Vec<cloth::collide::Body>,
+}
+
+/// The placement and contact keys every constructor takes.
+struct Common<'a, 'py> {
+    position: Option<&'a Bound<'py, PyAny>>,
+    thickness: Option<f64>,
+    friction: Option<f64>,
+    name: Option<String>,
+}
+
+impl Body {
+    /// Builds the body a `[[bodies]]` entry with `shape = value` (and `extra` keys) makes;
+    /// errors name the constructor.
+    fn build(
+        shape: &str,
+        value: toml::Value,
+        extra: toml::Table,
+        common: Common<'_, '_>,
+        dir: &Path,
+    ) -> PyResult<Self> {
+        let mut table = extra;
+        table.insert(shape.into(), value);
+        if let Some(p) = common.position {
+            table.insert("position".into(), to_toml(p, "position")?);
+        }
+        if let Some(t) = common.thickness {
+            table.insert("thickness".into(), toml::Value::Float(t));
+        }
+        if let Some(mu) = common.friction {
+            table.insert("friction".into(), toml::Value::Float(mu));
+        }
+        if let Some(n) = &common.name {
+            table.insert("name".into(), toml::Value::String(n.clone()));
+        }
+        let what = format!("Body.{shape}");
+        let spec: BodySpec = serde::Deserialize::deserialize(toml::Value::Table(table))
+            .map_err(|e| input(format!("{what}: {}", e.to_string().trim())))?;
+        let parts = spec.build("cloth.Body", dir, shape).map_err(input)?;
+        let name = common.name.unwrap_or_else(|| match parts.as_slice() {
+            [one] => one.name().to_string(),
+            _ => shape.to_string(),
+        });
+        Ok(Self { name, parts })
+    }
+
+    fn surface(&self) -> TriSurface {
+        let surfaces: Vec<TriSurface> = self.parts.iter().map(|b| b.surface_at(0.0)).collect();
+        TriSurface::merged(&surfaces)
+    }
+}
+
+/// All the parts of `bodies`, as the collider a simulation uses.
+pub fn collider(bodies: &[PyRef<'_, Body>]) -> Arc<Bodies> {
+    Arc::new(Bodies::new(
+        bodies.iter().flat_map(|b| b.parts.iter().cloned()).collect(),
+    ))
+}
+
+fn table(entries: &[(&str, toml::Value)]) -> toml::Value {
+    toml::Value::Table(entries.iter().map(|(k, v)| (k.to_string(), v.clone())).collect())
+}
+
+fn floats(v: &[f64]) -> toml::Value {
+    toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
+}
+
+#[pymethods]
+impl Body {
+    /// An OBJ or STL file (`scale` 0.01 for centimetres). A surface that is not closed and
+    /// consistently oriented raises ValueError naming the file and the edge.
+    #[staticmethod]
+    #[pyo3(signature = (path, *, scale = 1.0, position = None, thickness = None, friction = None, name = None))]
+    fn load(
+        path: std::path::PathBuf,
+        scale: f64,
+        position: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+        friction: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<Self> {
+        let file = toml::Value::String(path.display().to_string());
+        let extra = [("scale".to_string(), toml::Value::Float(scale))]
+            .into_iter()
+            .collect();
+        let common = Common {
+            position,
+            thickness,
+            friction,
+            name,
+        };
+        Self::build("file", file, extra, common, Path::new("."))
+    }
+
+    /// A sphere of `radius` centred on `position`.
+    #[staticmethod]
+    #[pyo3(signature = (radius, *, position = None, thickness = None, friction = None, name = None))]
+    fn sphere(
+        radius: f64,
+        position: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+        friction: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<Self> {
+        let shape = table(&[("radius", toml::Value::Float(radius))]);
+        let common = Common {
+            position,
+            thickness,
+            friction,
+            name,
+        };
+        Self::build("sphere", shape, toml::Table::new(), common, Path::new("."))
+    }
+
+    /// A box of `size` (x, y, z) centred on `position`.
+    #[staticmethod]
+    #[pyo3(signature = (size, *, position = None, thickness = None, friction = None, name = None))]
+    fn r#box(
+        size: (f64, f64, f64),
+        position: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+        friction: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<Self> {
+        let shape = table(&[("size", floats(&[size.0, size.1, size.2]))]);
+        let common = Common {
+            position,
+            thickness,
+            friction,
+            name,
+        };
+        Self::build("box", shape, toml::Table::new(), common, Path::new("."))
+    }
+
+    /// A cylinder along z of `radius` and `height`, centred on `position`.
+    #[staticmethod]
+    #[pyo3(signature = (radius, height, *, position = None, thickness = None, friction = None, name = None))]
+    fn cylinder(
+        radius: f64,
+        height: f64,
+        position: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+        friction: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<Self> {
+        let shape = table(&[
+            ("radius", toml::Value::Float(radius)),
+            ("height", toml::Value::Float(height)),
+        ]);
+        let common = Common {
+            position,
+            thickness,
+            friction,
+            name,
+        };
+        Self::build("cylinder", shape, toml::Table::new(), common, Path::new("."))
+    }
+
+    /// A table standing on z = 0 below `position`: a top of `size` (width, depth,
+    /// thickness) whose upper face is at `height`, on four legs.
+    #[staticmethod]
+    #[pyo3(signature = (size, height, *, leg_width = 0.06, leg_inset = 0.05, position = None, thickness = None, friction = None, name = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn table(
+        size: (f64, f64, f64),
+        height: f64,
+        leg_width: f64,
+        leg_inset: f64,
+        position: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+        friction: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<Self> {
+        let shape = table(&[
+            ("size", floats(&[size.0, size.1, size.2])),
+            ("height", toml::Value::Float(height)),
+            ("leg_width", toml::Value::Float(leg_width)),
+            ("leg_inset", toml::Value::Float(leg_inset)),
+        ]);
+        let common = Common {
+            position,
+            thickness,
+            friction,
+            name,
+        };
+        Self::build("table", shape, toml::Table::new(), common, Path::new("."))
+    }
+
+    /// The parametric mannequin: `height`, `bust`, `waist`, `hip`, `shoulder_width`,
+    /// `neck_girth` (m; missing ones take the average body's), and `arms` (True, or a dict
+    /// of arm measurements) for a form with arms.
+    #[staticmethod]
+    #[pyo3(signature = (*, position = None, thickness = None, friction = None, name = None, **measurements))]
+    fn mannequin(
+        position: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+        friction: Option<f64>,
+        name: Option<String>,
+        measurements: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let mut shape = toml::Table::new();
+        if let Some(m) = measurements {
+            for (k, v) in m.iter() {
+                let key: String = k.extract()?;
+                if key == "arms" && v.is_instance_of::<PyBool>() {
+                    // True: the average arms; False: none.
+                    if v.extract::<bool>()? {
+                        shape.insert(key, toml::Value::Table(toml::Table::new()));
+                    }
+                    continue;
+                }
+                if v.is_none() {
+                    continue;
+                }
+                let what = format!("mannequin.{key}");
+                shape.insert(key, to_toml(&v, &what)?);
+            }
+        }
+        let common = Common {
+            position,
+            thickness,
+            friction,
+            name,
+        };
+        Self::build(
+            "mannequin",
+            toml::Value::Table(shape),
+            toml::Table::new(),
+            common,
+            Path::new("."),
+        )
+    }
+
+    /// The body's name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+    /// The names of the surfaces it is made of.
+    #[getter]
+    fn parts(&self) -> Vec<String> {
+        self.parts.iter().map(|b| b.name().to_string()).collect()
+    }
+    /// `(V, 3)` vertices of all its parts, placed.
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        vec3_array(py, self.surface().vertices())
+    }
+    /// `(T, 3)` indices into `vertices`.
+    #[getter]
+    fn triangles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        let t: Vec<[usize; 3]> = self
+            .surface()
+            .triangles()
+            .iter()
+            .map(|t| t.map(|i| i as usize))
+            .collect();
+        index_array(py, &t)
+    }
+    /// Signed distance of each point to the body (negative inside), `(N,)`.
+    fn signed_distance<'py>(
+        &self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let x = read_points(points, "points", None)?;
+        let bodies = Bodies::new(self.parts.clone());
+        let d: Vec<f64> = py.detach(|| {
+            x.iter()
+                .map(|p| bodies.signed_distance(0.0, p).map_or(f64::INFINITY, |(d, _)| d))
+                .collect()
+        });
+        Ok(PyArray1::from_vec(py, d))
+    }
+    /// Writes its surface as OBJ.
+    fn save_obj(&self, path: std::path::PathBuf) -> PyResult<()> {
+        self.surface().write_obj(&path).map_err(|e| {
+            pyo3::exceptions::PyOSError::new_err(format!("cannot write '{}': {e}", path.display()))
+        })
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Body('{}', {} parts)", self.name, self.parts.len())
+    }
+}

@@ -1,0 +1,411 @@
+//! `cloth.Simulation` and what it reports: step statistics, rest outcomes, the snapshots
+//! callbacks see, strain.
+
+use crate::arrays::{index_list, index_vector, points, vec3_array};
+use crate::body::{collider, Body};
+use crate::convert::{from_dict, to_python};
+use crate::errors::{input, sim};
+use crate::fabric::Fabric;
+use crate::mesh::ClothMesh;
+use crate::observe::Watcher;
+use cloth::{Pin, RestCriteria, SimulationBuilder, SolverSettings, StopReason};
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use std::sync::Arc;
+
+/// Statistics of one step.
+#[pyclass(frozen, module = "cloth")]
+#[derive(Clone)]
+pub struct StepStats {
+    #[pyo3(get)]
+    pub step: u64,
+    #[pyo3(get)]
+    pub time: f64,
+    #[pyo3(get)]
+    pub cg_iterations: usize,
+    #[pyo3(get)]
+    pub cg_residual: f64,
+    #[pyo3(get)]
+    pub cg_converged: bool,
+    #[pyo3(get)]
+    pub assembly_seconds: f64,
+    #[pyo3(get)]
+    pub solve_seconds: f64,
+    #[pyo3(get)]
+    pub max_speed: f64,
+    #[pyo3(get)]
+    pub max_displacement: f64,
+    #[pyo3(get)]
+    pub kinetic_energy: f64,
+    #[pyo3(get)]
+    pub potential_energy: f64,
+    #[pyo3(get)]
+    pub contacts: usize,
+    #[pyo3(get)]
+    pub contact_corrections: usize,
+    #[pyo3(get)]
+    pub crossings: usize,
+    #[pyo3(get)]
+    pub feature_contacts: usize,
+    #[pyo3(get)]
+    pub feature_corrections: usize,
+    #[pyo3(get)]
+    pub contact_seconds: f64,
+    raw: cloth::StepStats,
+}
+
+impl From<cloth::StepStats> for StepStats {
+    fn from(s: cloth::StepStats) -> Self {
+        Self {
+            step: s.step,
+            time: s.time,
+            cg_iterations: s.cg_iterations,
+            cg_residual: s.cg_residual,
+            cg_converged: s.cg_converged,
+            assembly_seconds: s.assembly_seconds,
+            solve_seconds: s.solve_seconds,
+            max_speed: s.max_speed,
+            max_displacement: s.max_displacement,
+            kinetic_energy: s.kinetic_energy,
+            potential_energy: s.potential_energy,
+            contacts: s.contacts,
+            contact_corrections: s.contact_corrections,
+            crossings: s.crossings,
+            feature_contacts: s.feature_contacts,
+            feature_corrections: s.feature_corrections,
+            contact_seconds: s.contact_seconds,
+            raw: s,
+        }
+    }
+}
+
+#[pymethods]
+impl StepStats {
+    /// Every field as a dict.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.raw)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "StepStats(step={}, time={:.4}, cg_iterations={}, max_speed={:.3e}, contacts={})",
+            self.step, self.time, self.cg_iterations, self.max_speed, self.contacts
+        )
+    }
+}
+
+/// How a run to rest ended: `reason` is "at_rest", "step_limit" or "stopped" (the callback
+/// returned False).
+#[pyclass(frozen, get_all, module = "cloth")]
+pub struct RestOutcome {
+    pub reason: &'static str,
+    pub steps: u64,
+    pub last: Py<StepStats>,
+}
+
+impl RestOutcome {
+    pub fn new(py: Python<'_>, o: &cloth::RestOutcome) -> PyResult<Self> {
+        Ok(Self {
+            reason: match o.reason {
+                StopReason::AtRest => "at_rest",
+                StopReason::StepLimit => "step_limit",
+                StopReason::Stopped => "stopped",
+            },
+            steps: o.steps,
+            last: Py::new(py, StepStats::from(o.last))?,
+        })
+    }
+}
+
+#[pymethods]
+impl RestOutcome {
+    fn __repr__(&self) -> String {
+        format!("RestOutcome(reason='{}', steps={})", self.reason, self.steps)
+    }
+}
+
+/// What a callback sees: the stage ("running", "sewing", "draping"), the step's
+/// statistics, and copies of the positions and velocities after it.
+#[pyclass(frozen, get_all, module = "cloth")]
+pub struct Snapshot {
+    pub stage: String,
+    pub stats: StepStats,
+    pub positions: Py<PyAny>,
+    pub velocities: Py<PyAny>,
+}
+
+#[pymethods]
+impl Snapshot {
+    fn __repr__(&self) -> String {
+        format!("Snapshot(stage='{}', step={})", self.stage, self.stats.step)
+    }
+}
+
+/// Warp and weft strain of every triangle, % (positive: stretched).
+#[pyclass(frozen, get_all, module = "cloth")]
+pub struct Strain {
+    pub warp: Py<PyAny>,
+    pub weft: Py<PyAny>,
+    pub max_warp: f64,
+    pub max_weft: f64,
+    pub p99_warp: f64,
+    pub p99_weft: f64,
+}
+
+impl Strain {
+    fn new(py: Python<'_>, r: cloth::StrainReport) -> Self {
+        Self {
+            max_warp: r.max_warp,
+            max_weft: r.max_weft,
+            p99_warp: r.p99_warp,
+            p99_weft: r.p99_weft,
+            warp: PyArray1::from_vec(py, r.warp).into_any().unbind(),
+            weft: PyArray1::from_vec(py, r.weft).into_any().unbind(),
+        }
+    }
+}
+
+#[pymethods]
+impl Strain {
+    fn __repr__(&self) -> String {
+        format!(
+            "Strain(max_warp={:.3} %, max_weft={:.3} %, p99_warp={:.3} %, p99_weft={:.3} %)",
+            self.max_warp, self.max_weft, self.p99_warp, self.p99_weft
+        )
+    }
+}
+
+/// Warp and weft strain of `mesh` at `positions`.
+#[pyfunction]
+pub fn strain(py: Python<'_>, mesh: &ClothMesh, positions: &Bound<'_, PyAny>) -> PyResult<Strain> {
+    let x = points(positions, "positions", Some(mesh.inner.vertex_count()))?;
+    let report = py.detach(|| cloth::StrainReport::new(&mesh.inner, &x));
+    Ok(Strain::new(py, report))
+}
+
+/// The source's measure on a grid: the largest stretch between neighbouring particles
+/// along the warp and along the weft, %; None if the mesh is not a grid.
+#[pyfunction]
+pub fn grid_stretch(mesh: &ClothMesh, positions: &Bound<'_, PyAny>) -> PyResult<Option<(f64, f64)>> {
+    let x = points(positions, "positions", Some(mesh.inner.vertex_count()))?;
+    Ok(cloth::GridStretch::new(&mesh.inner, &x).map(|s| (s.horizontal, s.vertical)))
+}
+
+/// A cloth on bodies, stepped by explicit or implicit Euler. `pins` are particle numbers
+/// held where they start (or at `pin_positions`, `(K, 3)`); `settings` are a scene's
+/// `[solver]` keys (`integrator`, `time_step`, `gravity`, `wind`, `pcg`, `max_speed`,
+/// `max_kinetic_energy`, `parallel`). Stepping releases the GIL; a divergence raises
+/// SimulationError and keeps the last good state.
+#[pyclass(module = "cloth")]
+pub struct Simulation {
+    pub inner: cloth::Simulation,
+    pub bodies: Arc<cloth::collide::Bodies>,
+}
+
+impl Simulation {
+    /// Runs to rest, the GIL released, watched by `watcher`.
+    fn rest(
+        &mut self,
+        py: Python<'_>,
+        criteria: RestCriteria,
+        watcher: &mut Watcher,
+    ) -> PyResult<cloth::RestOutcome> {
+        let inner = &mut self.inner;
+        let result =
+            py.detach(|| inner.run_to_rest_with(&criteria, |s, stats| watcher.observe("running", s, stats)));
+        if let Some(e) = watcher.take_error() {
+            return Err(e);
+        }
+        result.map_err(|e| sim(py, &e))
+    }
+}
+
+#[pymethods]
+impl Simulation {
+    #[new]
+    #[pyo3(signature = (mesh, fabric, *, bodies = Vec::new(), pins = None, pin_positions = None, settings = None, velocities = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        mesh: &ClothMesh,
+        fabric: &Fabric,
+        bodies: Vec<PyRef<'_, Body>>,
+        pins: Option<&Bound<'_, PyAny>>,
+        pin_positions: Option<&Bound<'_, PyAny>>,
+        settings: Option<&Bound<'_, PyAny>>,
+        velocities: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let n = mesh.inner.vertex_count();
+        let settings: SolverSettings = match settings {
+            Some(s) => from_dict(s, "solver")?,
+            None => SolverSettings::default(),
+        };
+        let pinned = match pins {
+            Some(p) => index_list(p, "pins", n)?,
+            None => Vec::new(),
+        };
+        let targets = match pin_positions {
+            Some(p) => Some(points(p, "pin_positions", Some(pinned.len()))?),
+            None => None,
+        };
+        let pins = pinned.iter().enumerate().map(|(k, &i)| match &targets {
+            Some(t) => Pin::at(i, t[k]),
+            None => Pin::fixed(i),
+        });
+        let mut builder = SimulationBuilder::new(mesh.inner.clone(), fabric.inner.clone())
+            .settings(settings)
+            .pins(pins);
+        if let Some(v) = velocities {
+            builder = builder.velocities(points(v, "velocities", Some(n))?);
+        }
+        let bodies = collider(&bodies);
+        if !bodies.bodies().is_empty() {
+            builder = builder.collider(bodies.clone());
+        }
+        let inner = builder.build().map_err(input)?;
+        Ok(Self { inner, bodies })
+    }
+
+    /// Takes `n` steps; returns the last one's statistics.
+    #[pyo3(signature = (n = 1))]
+    fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<StepStats> {
+        if n == 0 {
+            return Err(input("n: must be at least 1 step"));
+        }
+        let mut watcher = Watcher::new(None, 1)?;
+        let inner = &mut self.inner;
+        let result = py.detach(|| {
+            let mut last = None;
+            for _ in 0..n {
+                let stats = inner.step()?;
+                last = Some(stats);
+                if watcher.observe("running", inner, &stats).is_break() {
+                    break;
+                }
+            }
+            Ok(last.expect("at least one step was taken"))
+        });
+        if let Some(e) = watcher.take_error() {
+            return Err(e);
+        }
+        result.map(StepStats::from).map_err(|e| sim(py, &e))
+    }
+
+    /// Steps until every particle moves less than `tolerance` m per step for
+    /// `consecutive_steps` steps, or `max_steps`. `callback` sees a Snapshot every `every`
+    /// steps; returning False stops the run (reason "stopped"); an exception it raises
+    /// stops the run and propagates. Ctrl-C stops it too (KeyboardInterrupt, the state
+    /// kept).
+    #[pyo3(signature = (*, tolerance = 1e-5, consecutive_steps = 10, max_steps = 10000, callback = None, every = 1))]
+    fn run_to_rest(
+        &mut self,
+        py: Python<'_>,
+        tolerance: f64,
+        consecutive_steps: u32,
+        max_steps: u64,
+        callback: Option<Py<PyAny>>,
+        every: u64,
+    ) -> PyResult<RestOutcome> {
+        let criteria = RestCriteria {
+            tolerance,
+            consecutive_steps,
+            max_steps,
+        };
+        criteria.validate().map_err(input)?;
+        let mut watcher = Watcher::new(callback, every)?;
+        let outcome = self.rest(py, criteria, &mut watcher)?;
+        RestOutcome::new(py, &outcome)
+    }
+
+    /// `(N, 3)` positions. Setting them moves the particles (pinned ones go back to their
+    /// pins in the next step).
+    #[getter]
+    fn get_positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        vec3_array(py, self.inner.positions())
+    }
+    #[setter]
+    fn set_positions(&mut self, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let x = points(value, "positions", Some(self.inner.positions().len()))?;
+        self.inner.set_positions(&x).map_err(input)
+    }
+    /// `(N, 3)` velocities, settable.
+    #[getter]
+    fn get_velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        vec3_array(py, self.inner.velocities())
+    }
+    #[setter]
+    fn set_velocities(&mut self, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let v = points(value, "velocities", Some(self.inner.velocities().len()))?;
+        self.inner.set_velocities(&v).map_err(input)
+    }
+    /// `(N,)` lumped particle masses, kg.
+    #[getter]
+    fn masses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.inner.masses())
+    }
+    /// The pinned particles.
+    #[getter]
+    fn pins<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        index_vector(py, self.inner.pins().iter().map(|p| p.particle))
+    }
+    /// The cloth's mesh (its positions are the initial ones).
+    #[getter]
+    fn mesh(&self) -> ClothMesh {
+        ClothMesh {
+            inner: self.inner.mesh().clone(),
+        }
+    }
+    /// The fabrics (one, or one per panel group of a garment).
+    #[getter]
+    fn fabrics(&self) -> Vec<Fabric> {
+        self.inner
+            .fabrics()
+            .iter()
+            .map(|f| Fabric { inner: f.clone() })
+            .collect()
+    }
+    /// The solver settings, as a scene's `[solver]` table.
+    #[getter]
+    fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, self.inner.settings())
+    }
+    /// Simulated time, s.
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner.time()
+    }
+    /// Steps taken so far.
+    #[getter]
+    fn step_count(&self) -> u64 {
+        self.inner.step_count()
+    }
+    /// Kinetic energy, J.
+    #[getter]
+    fn kinetic_energy(&self) -> f64 {
+        self.inner.kinetic_energy()
+    }
+    /// The warp and weft strain now.
+    fn strain(&self, py: Python<'_>) -> Strain {
+        let inner = &self.inner;
+        let report = py.detach(|| cloth::StrainReport::new(inner.mesh(), inner.positions()));
+        Strain::new(py, report)
+    }
+    /// The source's measure on a grid: the largest stretch between neighbouring particles
+    /// along the warp and along the weft, %; None if not a grid.
+    fn grid_stretch(&self) -> Option<(f64, f64)> {
+        cloth::GridStretch::new(self.inner.mesh(), self.inner.positions()).map(|s| (s.horizontal, s.vertical))
+    }
+    /// How deep the deepest particle is inside a body, m (0 if none is).
+    fn deepest_penetration(&self, py: Python<'_>) -> f64 {
+        let (bodies, inner) = (&self.bodies, &self.inner);
+        py.detach(|| bodies.deepest_inside(inner.time(), inner.positions()).0)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Simulation({} particles, {} pins, step {}, t = {:.4} s)",
+            self.inner.positions().len(),
+            self.inner.pins().len(),
+            self.inner.step_count(),
+            self.inner.time()
+        )
+    }
+}
