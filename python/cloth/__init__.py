@@ -38,6 +38,8 @@ from ._cloth import (
     strain,
 )
 
+from . import batch
+
 __all__ = [
     "Body",
     "ClothMesh",
@@ -55,6 +57,7 @@ __all__ = [
     "StepStats",
     "Strain",
     "__version__",
+    "batch",
     "grid_stretch",
     "strain",
 ]

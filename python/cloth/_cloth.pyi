@@ -209,7 +209,9 @@ class Body:
     ) -> Body:
         """The parametric mannequin: ``height``, ``bust``, ``waist``, ``hip``,
         ``shoulder_width``, ``neck_girth`` (m; missing ones take the average body's), and
-        ``arms`` (``True``, or a dict of arm measurements) for a form with arms."""
+        ``arms`` for a form with arms: ``True`` for the average arms scaled to the height
+        (as ``cloth mannequin --arms``), or a dict of arm measurements (as a scene's
+        ``arms = {...}``)."""
     @property
     def name(self) -> str: ...
     @property

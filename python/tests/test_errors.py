@@ -24,6 +24,7 @@ compression_warp = 100.0
 compression_weft = 100.0
 shear_modulus = 20.0
 bending = { warp = 1e-5, weft = 1e-5 }"""
+SI_GOOD = SI_NEGATIVE.replace("-5.0", "1000.0")
 
 BAD_SCENES = {
     "syntax": lambda s: s.replace("nx = 12", "nx = = 12"),
@@ -36,7 +37,7 @@ BAD_SCENES = {
     "unknown_preset": lambda s: s.replace('"cotton_poplin"', '"tweed"'),
     "bad_time_step": lambda s: s + "[solver]\ntime_step = -1.0\n",
     "tiny_picture": lambda s: s + "[output]\nimage_size = [5, 400]\n",
-    "two_fabrics": lambda s: s.replace('[fabric]\npreset = "cotton_poplin"', '[fabric]\npreset = "silk"\n' + SI_NEGATIVE[len("[fabric.si]\n") :].replace("[", "si = { ", 0)),
+    "two_fabrics": lambda s: s.replace('preset = "cotton_poplin"', 'preset = "cotton_poplin"\n' + SI_GOOD),
     "missing_mesh_file": lambda s: s.replace(
         s[s.index("[cloth.grid]") : s.index("[fabric]")], '[cloth.mesh]\nfile = "nothing.obj"\n'
     ),
@@ -67,7 +68,7 @@ def test_a_bad_scene_runs_nothing(sheet_scene, write_scene, cli_error, tmp_path)
 def test_a_scene_from_text_names_itself_in_errors(sheet_scene):
     with pytest.raises(ValueError) as e:
         cloth.Scene.from_toml(BAD_SCENES["syntax"](sheet_scene), name="inline.toml").check()
-    assert "inline.toml" in str(e.value) and "line 4" in str(e.value), str(e.value)
+    assert "inline.toml" in str(e.value) and "line 3" in str(e.value), str(e.value)
     with pytest.raises(ValueError) as e:
         cloth.Scene.from_dict({"cloth": {"grid": {"nx": 3}}, "fabric": {"preset": "silk"}}, name="d").check()
     assert "ny" in str(e.value) or "size" in str(e.value), str(e.value)
@@ -131,7 +132,7 @@ def test_an_explicit_run_that_blows_up_keeps_the_last_good_state():
 def test_a_diverging_scene_writes_the_last_good_state_and_the_report(
     sheet_scene, write_scene, tmp_path, run_cli, obj_vertices
 ):
-    path = write_scene(sheet_scene + "[solver]\nmax_speed = 0.01\n")
+    path = write_scene(sheet_scene + "[solver]\nmax_speed = 0.01\n[output]\nimage_size = [160, 100]\n")
     out = tmp_path / "py"
     with pytest.raises(cloth.SimulationError) as e:
         cloth.Scene.load(path).run(out)
@@ -168,6 +169,10 @@ def test_a_non_empty_output_folder_is_refused_without_force(sheet_scene, write_s
         cloth.Scene.load(path).run(out)
     assert expected in str(e.value), str(e.value)
     assert sorted(os.listdir(out)) == ["keep.txt"]
+    # An existing empty folder is fine without force.
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert cloth.Scene.load(path).run(empty).finished
     result = cloth.Scene.load(path).run(out, force=True)
     assert result.finished and (out / "report.json").exists()
     assert (out / "keep.txt").read_text() == "mine"
@@ -226,9 +231,6 @@ VALUE_ERRORS = {
     "consecutive_steps = 0": lambda: _sim().run_to_rest(consecutive_steps=0, max_steps=3),
     "fabric area_density < 0": lambda: cloth.Fabric.preset("silk").with_values(area_density=-1.0),
     "empty strain positions": lambda: cloth.strain(small_sheet(), np.zeros((0, 3))),
-    "scene run every = 0": lambda: cloth.Scene.from_toml(
-        '[cloth.grid]\nnx = 3\nny = 3\nsize = [0.1, 0.1]\n[fabric]\npreset = "silk"\n[rest]\nmax_steps = 2\ntolerance = 1e-5\nconsecutive_steps = 1\n'
-    ).run("/nonexistent-dir-for-cloth-tests/out", callback=lambda s: None, every=0),
 }
 
 
@@ -237,6 +239,16 @@ def test_invalid_arguments_are_value_errors_not_panics(case):
     # PanicException derives from BaseException: `raises(ValueError)` lets it through.
     with pytest.raises(ValueError):
         VALUE_ERRORS[case]()
+
+
+def test_scene_run_every_zero_is_a_value_error_and_runs_nothing(sheet_scene, tmp_path):
+    scene = cloth.Scene.from_toml(sheet_scene)
+    out = tmp_path / "out"
+    with pytest.raises(ValueError):
+        scene.run(out, callback=lambda s: None, every=0)
+    assert not out.exists() or not any(out.iterdir())
+    with pytest.raises(ValueError):
+        cloth.Garment(_pattern(), 0.05).sew([], cloth.Fabric.preset("silk"), callback=lambda s: None, every=0)
 
 
 NO_PANIC = {
@@ -293,14 +305,58 @@ def test_ctrl_c_stops_a_run_and_keeps_the_state():
     killer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            sim.run_to_rest(tolerance=1e-14, max_steps=100_000, callback=callback, every=5)
+            sim.run_to_rest(tolerance=1e-14, max_steps=20_000, callback=callback, every=5)
     finally:
         started.set()
         killer.join()
-    assert 5 <= sim.step_count < 100_000
+    assert 5 <= sim.step_count < 20_000
     assert steps and sim.step_count >= steps[-1]
     assert np.isfinite(sim.positions).all()
     # It can go on from there.
     n = sim.step_count
     sim.step()
     assert sim.step_count == n + 1
+
+
+@pytest.mark.skipif(
+    signal.getsignal(signal.SIGINT) is not signal.default_int_handler or os.name == "nt",
+    reason="needs Python's own SIGINT handler",
+)
+def test_ctrl_c_stops_a_scene_and_writes_the_state_reached(sheet_scene, tmp_path, obj_vertices):
+    text = sheet_scene.replace("nx = 12", "nx = 20").replace("ny = 12", "ny = 20")
+    text = text.replace("max_steps = 60", "max_steps = 20000").replace("tolerance = 1e-5", "tolerance = 1e-14")
+    text += "[output]\npng = false\nglb = false\n"
+    scene = cloth.Scene.from_toml(text)
+    started = threading.Event()
+
+    def interrupt():
+        started.wait()
+        os.kill(os.getpid(), signal.SIGINT)
+
+    killer = threading.Thread(target=interrupt)
+    killer.start()
+    out = tmp_path / "out"
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            scene.run(out, callback=lambda s: started.set(), every=5)
+    finally:
+        started.set()
+        killer.join()
+    report = json.loads((out / "report.json").read_text())
+    assert report["outcome"]["kind"] == "interrupted", report["outcome"]
+    step = report["outcome"]["step"]
+    assert 5 <= step < 20000
+    assert report["stages"][0]["steps"] == step
+    assert obj_vertices(out / "cloth.obj").shape == (400, 3)
+
+
+def test_an_exception_in_a_scene_callback_propagates(sheet_scene, tmp_path):
+    class Boom(Exception):
+        pass
+
+    def callback(snap):
+        if snap.stats.step == 10:
+            raise Boom("stop here")
+
+    with pytest.raises(Boom, match="stop here"):
+        cloth.Scene.from_toml(sheet_scene + "[output]\npng = false\nglb = false\n").run(tmp_path / "out", callback=callback)

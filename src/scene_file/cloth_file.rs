@@ -10,60 +10,128 @@ use std::path::Path;
 const FLAT_TOLERANCE: f64 = 1e-6;
 
 /// Reads `path` (positions times `scale` then moved by `offset`, texture coordinates times
-/// `uv_scale`, both to metres). Errors say what is wrong in words; the caller adds the file.
+/// `uv_scale`, both to metres). Particles are the file's vertices in the file's order, so
+/// pins and arrays can name them by their numbers (tobj renumbers vertices in the order
+/// faces use them, which is why the file is read here). Polygons are fanned into
+/// triangles. Errors say what is wrong and on which line; the caller adds the file.
 pub fn read_cloth_obj(path: &Path, scale: f64, uv_scale: f64, offset: Vec3) -> Result<ClothMesh, String> {
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        ..Default::default()
-    };
-    let (models, _) = tobj::load_obj(path, &options).map_err(|e| e.to_string())?;
-    let (mut positions, mut triangles, mut corner_uv) = (Vec::new(), Vec::new(), Vec::new());
-    let mut has_uv = None;
-    for model in &models {
-        let m = &model.mesh;
-        let base = positions.len();
-        positions.extend(
-            m.positions
-                .chunks_exact(3)
-                .map(|p| scale * Vec3::new(p[0], p[1], p[2]) + offset),
-        );
-        let with_uv = !m.texcoords.is_empty();
-        if *has_uv.get_or_insert(with_uv) != with_uv {
-            return Err("some objects have texture coordinates (vt) and some do not".into());
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let obj = parse_obj(&text)?;
+    let positions: Vec<Vec3> = obj.vertices.iter().map(|p| scale * p + offset).collect();
+    if obj.faces.is_empty() {
+        return Err("no faces".into());
+    }
+    let with_uv = obj.faces[0].1 .1.is_some();
+    let (mut triangles, mut corner_uv) = (Vec::new(), Vec::new());
+    for (line, face) in &obj.faces {
+        let (v, t) = (&face.0, face.1.as_ref());
+        if t.is_some() != with_uv {
+            return Err(format!(
+                "line {line}: some faces have texture coordinates (vt) and some do not"
+            ));
         }
-        for (k, face) in m.indices.chunks_exact(3).enumerate() {
-            triangles.push([face[0], face[1], face[2]].map(|i| base + i as usize));
-            if with_uv {
-                // tobj gives texture indices per corner when they differ from the positions'.
-                let uv_index = |c: usize| {
-                    let i = if m.texcoord_indices.is_empty() {
-                        face[c]
-                    } else {
-                        m.texcoord_indices[3 * k + c]
-                    } as usize;
-                    m.texcoords
-                        .get(2 * i..2 * i + 2)
-                        .map(|t| uv_scale * Vector2::new(t[0], t[1]))
-                        .ok_or_else(|| {
-                            format!(
-                                "face {k} of '{}' names texture coordinate {}, which does not exist",
-                                model.name,
-                                i + 1
-                            )
-                        })
-                };
-                corner_uv.push([uv_index(0)?, uv_index(1)?, uv_index(2)?]);
+        for k in 1..v.len() - 1 {
+            triangles.push([v[0], v[k], v[k + 1]]);
+            if let Some(t) = t {
+                corner_uv.push([t[0], t[k], t[k + 1]].map(|i| uv_scale * obj.texcoords[i]));
             }
         }
     }
-    if triangles.is_empty() {
-        return Err("no faces".into());
-    }
-    if has_uv == Some(true) {
+    if with_uv {
         return ClothMesh::with_corner_uv(positions, triangles, corner_uv).map_err(|e| e.to_string());
     }
     let uv = flat_coordinates(&positions)?;
     ClothMesh::new(positions, uv, triangles).map_err(|e| e.to_string())
+}
+
+/// A face: its vertices and, if given, its texture coordinates (0-based).
+type Face = (Vec<usize>, Option<Vec<usize>>);
+
+struct ObjData {
+    vertices: Vec<Vec3>,
+    texcoords: Vec<Vector2<f64>>,
+    /// Each face with its line number.
+    faces: Vec<(usize, Face)>,
+}
+
+/// The geometry statements of an OBJ file (`v`, `vt`, `f`); the rest (normals, groups,
+/// materials, smoothing) does not shape a cloth and is skipped.
+fn parse_obj(text: &str) -> Result<ObjData, String> {
+    let mut obj = ObjData {
+        vertices: Vec::new(),
+        texcoords: Vec::new(),
+        faces: Vec::new(),
+    };
+    for (n, raw) in text.lines().enumerate() {
+        let line = n + 1;
+        let content = raw.split('#').next().unwrap_or("");
+        let mut words = content.split_whitespace();
+        let numbers = |words: std::str::SplitWhitespace<'_>, count: usize, what: &str| {
+            let values: Vec<f64> = words
+                .take(count)
+                .map(|w| w.parse::<f64>().ok().filter(|x| x.is_finite()))
+                .collect::<Option<_>>()
+                .ok_or_else(|| format!("line {line}: {what} needs {count} finite numbers"))?;
+            if values.len() < count {
+                return Err(format!("line {line}: {what} needs {count} finite numbers"));
+            }
+            Ok(values)
+        };
+        match words.next() {
+            Some("v") => {
+                let p = numbers(words, 3, "a vertex (v)")?;
+                obj.vertices.push(Vec3::new(p[0], p[1], p[2]));
+            }
+            Some("vt") => {
+                let t = numbers(words, 2, "a texture coordinate (vt)")?;
+                obj.texcoords.push(Vector2::new(t[0], t[1]));
+            }
+            Some("f") => {
+                let (mut v, mut t) = (Vec::new(), Vec::new());
+                for corner in words {
+                    let mut parts = corner.split('/');
+                    let index = |part: Option<&str>,
+                                 count: usize,
+                                 what: &str|
+                     -> Result<Option<usize>, String> {
+                        let Some(part) = part.filter(|p| !p.is_empty()) else {
+                            return Ok(None);
+                        };
+                        let i: i64 = part
+                            .parse()
+                            .map_err(|_| format!("line {line}: '{corner}' is not a face corner"))?;
+                        // OBJ numbers from 1; negative numbers count back from the last.
+                        let resolved = if i > 0 { i - 1 } else { count as i64 + i };
+                        if i == 0 || resolved < 0 || resolved >= count as i64 {
+                            return Err(format!(
+                                "line {line}: the face names {what} {i}, which does not exist ({count} so far)"
+                            ));
+                        }
+                        Ok(Some(resolved as usize))
+                    };
+                    let vi = index(parts.next(), obj.vertices.len(), "vertex")?
+                        .ok_or_else(|| format!("line {line}: '{corner}' names no vertex"))?;
+                    v.push(vi);
+                    t.push(index(parts.next(), obj.texcoords.len(), "texture coordinate")?);
+                }
+                if v.len() < 3 {
+                    return Err(format!("line {line}: a face needs at least 3 corners"));
+                }
+                let t = match t.iter().all(Option::is_some) {
+                    true => Some(t.into_iter().flatten().collect()),
+                    false if t.iter().all(Option::is_none) => None,
+                    false => {
+                        return Err(format!(
+                            "line {line}: some corners of the face have texture coordinates and some do not"
+                        ))
+                    }
+                };
+                obj.faces.push((line, (v, t)));
+            }
+            _ => {}
+        }
+    }
+    Ok(obj)
 }
 
 /// Coordinates in the plane of a flat point set, u along the plane's x direction (or y's
@@ -145,6 +213,23 @@ mod tests {
         let e = read_cloth_obj(&bent, 1.0, 1.0, Vec3::zeros()).unwrap_err();
         assert!(e.contains("not flat") && e.contains("vt"), "{e}");
         let bad = write("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
-        assert!(read_cloth_obj(&bad, 1.0, 1.0, Vec3::zeros()).is_err());
+        let e = read_cloth_obj(&bad, 1.0, 1.0, Vec3::zeros()).unwrap_err();
+        assert!(e.contains("line 3") && e.contains("vertex 7"), "{e}");
+    }
+
+    #[test]
+    fn particles_keep_the_files_vertex_numbers() {
+        // Faces use the vertices out of order, one as a quad and with negative indices;
+        // vertex 5 (0.05, -0.1, 1) is used last.
+        let path = write(
+            "order.obj",
+            "o sheet\nv 0 0.1 1\nv 0.1 0.1 1\nv 0.1 0 1\nv 0 0 1\nv 0.05 -0.1 1\nvn 0 0 1\n\
+             g a\nf 4//1 3//1 2//1 1//1\nf -3 -2 -1\n",
+        );
+        let mesh = read_cloth_obj(&path, 1.0, 1.0, Vec3::zeros()).unwrap();
+        assert_eq!(mesh.vertex_count(), 5);
+        assert_eq!(mesh.positions()[4], Vec3::new(0.05, -0.1, 1.0));
+        assert_eq!(mesh.positions()[0], Vec3::new(0.0, 0.1, 1.0));
+        assert_eq!(mesh.triangles(), &[[3, 2, 1], [3, 1, 0], [2, 3, 4]]);
     }
 }

@@ -5,6 +5,7 @@ use crate::arrays::{index_array, points as read_points, vec3_array};
 use crate::convert::to_toml;
 use crate::errors::input;
 use cloth::collide::{Bodies, TriSurface};
+use cloth::garment::mannequin::Measurements;
 use cloth::scene_file::BodySpec;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -208,8 +209,9 @@ impl Body {
     }
 
     /// The parametric mannequin: `height`, `bust`, `waist`, `hip`, `shoulder_width`,
-    /// `neck_girth` (m; missing ones take the average body's), and `arms` (True, or a dict
-    /// of arm measurements) for a form with arms.
+    /// `neck_girth` (m; missing ones take the average body's), and `arms` for a form with
+    /// arms: True for the average arms scaled to the height (as `cloth mannequin --arms`),
+    /// or a dict of arm measurements (as a scene's `arms = {...}`).
     #[staticmethod]
     #[pyo3(signature = (*, position = None, thickness = None, friction = None, name = None, **measurements))]
     fn mannequin(
@@ -220,14 +222,12 @@ impl Body {
         measurements: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
         let mut shape = toml::Table::new();
+        let mut with_arms = false;
         if let Some(m) = measurements {
             for (k, v) in m.iter() {
                 let key: String = k.extract()?;
                 if key == "arms" && v.is_instance_of::<PyBool>() {
-                    // True: the average arms; False: none.
-                    if v.extract::<bool>()? {
-                        shape.insert(key, toml::Value::Table(toml::Table::new()));
-                    }
+                    with_arms = v.extract::<bool>()?;
                     continue;
                 }
                 if v.is_none() {
@@ -236,6 +236,14 @@ impl Body {
                 let what = format!("mannequin.{key}");
                 shape.insert(key, to_toml(&v, &what)?);
             }
+        }
+        if with_arms {
+            // As `cloth mannequin --arms`: the average arms, their length scaled to the body.
+            let body: Measurements = serde::Deserialize::deserialize(toml::Value::Table(shape.clone()))
+                .map_err(|e| input(format!("Body.mannequin: {}", e.to_string().trim())))?;
+            let arms = toml::Value::try_from(body.with_arms().arms)
+                .map_err(|e| input(format!("Body.mannequin: arms: {e}")))?;
+            shape.insert("arms".into(), arms);
         }
         let common = Common {
             position,

@@ -17,38 +17,55 @@ use std::sync::Arc;
 #[pyclass(frozen, module = "cloth")]
 #[derive(Clone)]
 pub struct StepStats {
+    /// Number of this step (1 for the first).
     #[pyo3(get)]
     pub step: u64,
+    /// Simulation time at its end, s.
     #[pyo3(get)]
     pub time: f64,
+    /// PCG iterations (0 for explicit integrators).
     #[pyo3(get)]
     pub cg_iterations: usize,
+    /// Final relative PCG residual |r|/|b|.
     #[pyo3(get)]
     pub cg_residual: f64,
+    /// Whether PCG met its tolerance (True for explicit integrators).
     #[pyo3(get)]
     pub cg_converged: bool,
+    /// Wall time assembling forces and Jacobians, s.
     #[pyo3(get)]
     pub assembly_seconds: f64,
+    /// Wall time in the linear solve, s.
     #[pyo3(get)]
     pub solve_seconds: f64,
+    /// Largest particle speed at the end of the step, m/s.
     #[pyo3(get)]
     pub max_speed: f64,
+    /// Largest particle displacement during the step, m.
     #[pyo3(get)]
     pub max_displacement: f64,
+    /// Kinetic energy at the end of the step, J.
     #[pyo3(get)]
     pub kinetic_energy: f64,
+    /// Elastic plus gravitational energy at the start of the step, J.
     #[pyo3(get)]
     pub potential_energy: f64,
+    /// Particles constrained by a body contact during the step.
     #[pyo3(get)]
     pub contacts: usize,
+    /// Particles put back out to the contact thickness at the end of the step.
     #[pyo3(get)]
     pub contact_corrections: usize,
+    /// Of those, particles whose path entered a body within the step.
     #[pyo3(get)]
     pub crossings: usize,
+    /// Sharp body features under cloth triangles, held off by the feature penalty.
     #[pyo3(get)]
     pub feature_contacts: usize,
+    /// Cloth triangles found pierced by a sharp feature and pushed back out.
     #[pyo3(get)]
     pub feature_corrections: usize,
+    /// Wall time in the end-of-step contact passes, s.
     #[pyo3(get)]
     pub contact_seconds: f64,
     raw: cloth::StepStats,
@@ -97,8 +114,11 @@ impl StepStats {
 /// returned False).
 #[pyclass(frozen, get_all, module = "cloth")]
 pub struct RestOutcome {
+    /// "at_rest", "step_limit" or "stopped".
     pub reason: &'static str,
+    /// Steps taken by this run.
     pub steps: u64,
+    /// Statistics of the last step.
     pub last: Py<StepStats>,
 }
 
@@ -127,9 +147,13 @@ impl RestOutcome {
 /// statistics, and copies of the positions and velocities after it.
 #[pyclass(frozen, get_all, module = "cloth")]
 pub struct Snapshot {
+    /// "running", "sewing" or "draping".
     pub stage: String,
+    /// The step's statistics.
     pub stats: StepStats,
+    /// (N, 3) positions after the step (a copy).
     pub positions: Py<PyAny>,
+    /// (N, 3) velocities after the step (a copy).
     pub velocities: Py<PyAny>,
 }
 
@@ -143,11 +167,17 @@ impl Snapshot {
 /// Warp and weft strain of every triangle, % (positive: stretched).
 #[pyclass(frozen, get_all, module = "cloth")]
 pub struct Strain {
+    /// (M,) warp strain of each triangle, %.
     pub warp: Py<PyAny>,
+    /// (M,) weft strain of each triangle, %.
     pub weft: Py<PyAny>,
+    /// Largest warp strain, %.
     pub max_warp: f64,
+    /// Largest weft strain, %.
     pub max_weft: f64,
+    /// 99th percentile of the warp strain, %.
     pub p99_warp: f64,
+    /// 99th percentile of the weft strain, %.
     pub p99_weft: f64,
 }
 
