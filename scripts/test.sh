@@ -23,6 +23,10 @@ if [ -z "$python" ]; then
     echo "Python 3.11 or newer not found: the Python package's tests need it" >&2
     exit 1
 fi
+if ! "$python" -c 'import ensurepip, venv' 2>/dev/null; then
+    echo "$python cannot make virtual environments: install its venv module (Debian: python3-venv)" >&2
+    exit 1
+fi
 
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
@@ -35,17 +39,21 @@ rust_status=${PIPESTATUS[0]}
 set -e
 
 venv=target/python-venv
-if [ ! -x "$venv/bin/python" ]; then
-    "$python" -m venv "$venv"
-fi
 # `pip install .` is how users install it: maturin builds the extension (abi3, Python
-# 3.11+) from this tree, against Cargo.lock.
+# 3.11+) from this tree, against Cargo.lock. A failed install still ends with the totals.
 export MATURIN_PEP517_ARGS="--locked"
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ".[test]"
-
 set +e
-CLOTH_BIN="$PWD/target/release/cloth" "$venv/bin/python" -m pytest python/tests -p no:cacheprovider 2>&1 | tee -a "$log"
-py_status=${PIPESTATUS[0]}
+{ [ -x "$venv/bin/python" ] || "$python" -m venv "$venv"; } \
+    && "$venv/bin/python" -m pip install --quiet --disable-pip-version-check ".[test]"
+install_status=$?
+py_status=$install_status
+if [ "$install_status" -eq 0 ]; then
+    CLOTH_BIN="$PWD/target/release/cloth" "$venv/bin/python" -m pytest python/tests -p no:cacheprovider \
+        --color=no 2>&1 | tee -a "$log"
+    py_status=${PIPESTATUS[0]}
+else
+    echo "building or installing the Python package failed: its suites did not run" >&2
+fi
 set -e
 
 passed=0
@@ -60,7 +68,7 @@ py_passed=$(sed -nE 's/.* ([0-9]+) passed.*/\1/p' <<<"$summary")
 py_failed=$(sed -nE 's/.* ([0-9]+) failed.*/\1/p' <<<"$summary")
 py_errors=$(sed -nE 's/.* ([0-9]+) errors?.*/\1/p' <<<"$summary")
 passed=$((passed + ${py_passed:-0}))
-failed=$((failed + ${py_failed:-0} + ${py_errors:-0}))
+failed=$((failed + ${py_failed:-0} + ${py_errors:-0} + (install_status != 0)))
 echo
 echo "all suites: $passed passed, $failed failed"
 if [ "$rust_status" -ne 0 ]; then

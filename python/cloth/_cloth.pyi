@@ -87,7 +87,7 @@ class ClothMesh:
     def grid(
         nx: int,
         ny: int,
-        size: tuple[float, float],
+        size: tuple[float, float] | Sequence[float],
         *,
         origin: _Vec3 = (0.0, 0.0, 0.0),
         u_axis: _Vec3 = (1.0, 0.0, 0.0),
@@ -252,7 +252,7 @@ class Garment:
     """A pattern meshed for simulation: each panel discretised at ``edge_length`` (m),
     placed in 3D, and the seams' vertex pairs matched one to one."""
 
-    def __init__(self, pattern: Pattern, edge_length: float = 0.01) -> None: ...
+    def __init__(self, pattern: Pattern, edge_length: float = 0.015) -> None: ...
     @property
     def mesh(self) -> ClothMesh:
         """The unsewn mesh, panels placed."""
@@ -352,7 +352,7 @@ class Snapshot:
     """What a callback sees: the stage (``"running"``, ``"sewing"``, ``"draping"``), the
     step's statistics, and copies of the positions and velocities after it."""
 
-    stage: str
+    stage: Literal["running", "sewing", "draping"]
     stats: StepStats
     positions: npt.NDArray[np.float64]
     velocities: npt.NDArray[np.float64]
@@ -462,7 +462,8 @@ class RunResult:
     def report(self) -> dict[str, Any]:
         """As ``report.json``."""
     @property
-    def outcome(self) -> Literal["finished", "interrupted", "failed"]: ...
+    def outcome(self) -> Literal["finished", "interrupted"]:
+        """A failed run raises :class:`SimulationError` instead."""
     @property
     def finished(self) -> bool: ...
     @property

@@ -84,8 +84,8 @@ def _check_name(name: object) -> str:
     problem = None
     if not name or name in {".", ".."}:
         problem = "it must be a folder name"
-    elif any(c in name for c in "/\\\0") or (os.altsep and os.altsep in name):
-        problem = "it must be a single folder name, without path separators"
+    elif any(c in name for c in "/\\\0:") or (os.altsep and os.altsep in name):
+        problem = "it must be a single folder name, without path separators or drives (:)"
     elif name != name.strip():
         problem = "it starts or ends with white space"
     elif name == BATCH_FILE:
@@ -453,12 +453,22 @@ def _summary(report: Mapping[str, Any] | None) -> dict[str, Any]:
 
 
 def _empty_folder(folder: Path) -> None:
-    # The markers go first: should the rest fail half way, no stale done.json remains.
-    for marker in (DONE_FILE, FAILED_FILE):
-        (folder / marker).unlink(missing_ok=True)
-    # Outputs of an earlier, different job would sit beside this one's (a render.png this
-    # scene does not write, old frames/).
-    if folder.exists():
+    """Makes ``folder`` an empty folder for a run. Only a folder a batch run made (it holds
+    a marker) or an empty one is emptied: anything else under the job's name is the
+    user's, and the job fails instead of deleting it."""
+    if folder.is_symlink() or (folder.exists() and not folder.is_dir()):
+        raise FileExistsError(f"'{folder}' is in the way of the run's folder and is not a batch run's")
+    if folder.exists() and any(folder.iterdir()):
+        if not ((folder / DONE_FILE).is_file() or (folder / FAILED_FILE).is_file()):
+            raise FileExistsError(
+                f"'{folder}' exists and is not a batch run's folder (no {DONE_FILE} or {FAILED_FILE}): "
+                "move it away or rename the job"
+            )
+        # The markers go first: should the rest fail half way, no stale done.json remains.
+        for marker in (DONE_FILE, FAILED_FILE):
+            (folder / marker).unlink(missing_ok=True)
+        # Outputs of an earlier, different job would sit beside this one's (a render.png
+        # this scene does not write, old frames/).
         shutil.rmtree(folder)
     folder.mkdir(parents=True, exist_ok=True)
 
@@ -532,9 +542,11 @@ def _lost(job: Job, folder: Path, error: BaseException) -> RunRecord:
         error_type=type(error).__name__,
         key=job.key(),
     )
-    with contextlib.suppress(OSError):
-        folder.mkdir(parents=True, exist_ok=True)
-        _write_json(folder / FAILED_FILE, _marker(record, []))
+    # A folder that is not a batch run's stays as it was: no marker in it.
+    if not isinstance(error, FileExistsError):
+        with contextlib.suppress(OSError):
+            folder.mkdir(parents=True, exist_ok=True)
+            _write_json(folder / FAILED_FILE, _marker(record, []))
     return record
 
 

@@ -739,3 +739,36 @@ def test_version_is_the_packages():
     from importlib.metadata import version
 
     assert version("cloth") == cloth.__version__
+
+
+def test_sizes_take_any_sequence_and_none_leaves_a_key_out():
+    for size in ([0.4, 0.6, 0.2], np.array([0.4, 0.6, 0.2]), (0.4, 0.6, 0.2)):
+        box = cloth.Body.box(size)
+        np.testing.assert_allclose(np.ptp(box.vertices, axis=0), [0.4, 0.6, 0.2], atol=1e-12)
+    assert cloth.ClothMesh.grid(3, 4, np.array([0.2, 0.3])).rest_area == pytest.approx(0.06)
+    silk = cloth.Fabric.preset("silk").to_si()
+    # None is a missing key: the default (no damping) instead of silk's.
+    undamped = cloth.Fabric.from_si({**silk, "damping": None})
+    assert undamped == cloth.Fabric.from_si({k: v for k, v in silk.items() if k != "damping"})
+
+
+def test_a_simulation_error_survives_pickling_as_a_worker_would_send_it():
+    import pickle
+
+    sim = cloth.Simulation(
+        cloth.ClothMesh.grid(6, 6, (0.2, 0.2)),
+        cloth.Fabric.preset("cotton_poplin"),
+        settings={"max_speed": 1e-3},
+    )
+    with pytest.raises(cloth.SimulationError) as e:
+        sim.step(5)
+    back = pickle.loads(pickle.dumps(e.value))
+    assert type(back) is cloth.SimulationError and str(back) == str(e.value)
+    assert back.step == e.value.step == 1
+
+
+def test_nesting_that_never_ends_is_an_error_not_a_crash():
+    loop: list = []
+    loop.append(loop)
+    with pytest.raises(ValueError, match="nested too deeply"):
+        cloth.Fabric.from_si({"area_density": loop})

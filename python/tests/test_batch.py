@@ -121,6 +121,7 @@ def test_dask_cluster_records_the_broken_scene_finishes_the_others_and_skips_the
         ) as cluster,
         Client(cluster) as client,
     ):
+        client.wait_for_workers(2, timeout=60)
         assert len(client.scheduler_info()["workers"]) == 2
         executor = client.get_executor()
         seen: list[RunRecord] = []
@@ -295,7 +296,7 @@ def test_duplicate_names_are_refused_before_anything_runs(sheet_file: Path, tmp_
 
 
 def test_job_names_must_be_single_folder_names(tmp_path: Path) -> None:
-    for bad in ["", ".", "..", "a/b", "a\\b", "../up", " padded", "batch.json"]:
+    for bad in ["", ".", "..", "a/b", "a\\b", "../up", " padded", "batch.json", "C:", "D:x"]:
         with pytest.raises(ValueError, match="job name"):
             Job(bad, {}, str(tmp_path))
     name = "cotton_poplin__skirt__height1.60"
@@ -471,3 +472,16 @@ def test_batch_result_helpers(tmp_path: Path) -> None:
         "3 runs: 1 done, 1 skipped (done before), 1 failed",
         "  b: SimulationError: boom",
     ]
+
+
+def test_a_folder_that_is_not_a_runs_is_left_alone(sheet_file: Path, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    mine = out / "sheet"
+    mine.mkdir(parents=True)
+    (mine / "thesis.tex").write_text("years of work")
+    result = run_batch([Job.from_file(sheet_file, name="sheet")], out)
+    record = result.record("sheet")
+    assert record.status == "failed" and record.error_type == "FileExistsError", record
+    assert "not a batch run" in (record.error or "")
+    assert sorted(p.name for p in mine.iterdir()) == ["thesis.tex"]
+    assert (mine / "thesis.tex").read_text() == "years of work"

@@ -275,8 +275,7 @@ NO_PANIC = {
 def test_odd_calls_never_panic(case):
     try:
         NO_PANIC[case]()
-    except Exception as e:  # a PanicException is a BaseException and is not caught here
-        assert type(e).__name__ != "PanicException"
+    except Exception as e:  # a PanicException is a BaseException: it is not caught here
         assert isinstance(e, (ValueError, TypeError, OverflowError, IndexError)), repr(e)
 
 

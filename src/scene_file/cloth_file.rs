@@ -21,6 +21,19 @@ pub fn read_cloth_obj(path: &Path, scale: f64, uv_scale: f64, offset: Vec3) -> R
     if obj.faces.is_empty() {
         return Err("no faces".into());
     }
+    // Every particle must be part of the cloth; tobj dropped such vertices silently.
+    let mut used = vec![false; obj.vertices.len()];
+    obj.faces
+        .iter()
+        .flat_map(|(_, f)| &f.0)
+        .for_each(|&i| used[i] = true);
+    if let Some(k) = used.iter().position(|u| !u) {
+        return Err(format!(
+            "line {}: vertex {} is used by no face (a cloth is made of its faces' vertices)",
+            obj.vertex_lines[k],
+            k + 1
+        ));
+    }
     let with_uv = obj.faces[0].1 .1.is_some();
     let (mut triangles, mut corner_uv) = (Vec::new(), Vec::new());
     for (line, face) in &obj.faces {
@@ -40,6 +53,12 @@ pub fn read_cloth_obj(path: &Path, scale: f64, uv_scale: f64, offset: Vec3) -> R
     if with_uv {
         return ClothMesh::with_corner_uv(positions, triangles, corner_uv).map_err(|e| e.to_string());
     }
+    if !obj.texcoords.is_empty() {
+        return Err(
+            "the file has texture coordinates (vt) but its faces do not use them: write faces as f v/vt"
+                .into(),
+        );
+    }
     let uv = flat_coordinates(&positions)?;
     ClothMesh::new(positions, uv, triangles).map_err(|e| e.to_string())
 }
@@ -49,6 +68,8 @@ type Face = (Vec<usize>, Option<Vec<usize>>);
 
 struct ObjData {
     vertices: Vec<Vec3>,
+    /// The line of each vertex.
+    vertex_lines: Vec<usize>,
     texcoords: Vec<Vector2<f64>>,
     /// Each face with its line number.
     faces: Vec<(usize, Face)>,
@@ -59,6 +80,7 @@ struct ObjData {
 fn parse_obj(text: &str) -> Result<ObjData, String> {
     let mut obj = ObjData {
         vertices: Vec::new(),
+        vertex_lines: Vec::new(),
         texcoords: Vec::new(),
         faces: Vec::new(),
     };
@@ -81,6 +103,7 @@ fn parse_obj(text: &str) -> Result<ObjData, String> {
             Some("v") => {
                 let p = numbers(words, 3, "a vertex (v)")?;
                 obj.vertices.push(Vec3::new(p[0], p[1], p[2]));
+                obj.vertex_lines.push(line);
             }
             Some("vt") => {
                 let t = numbers(words, 2, "a texture coordinate (vt)")?;
@@ -231,5 +254,15 @@ mod tests {
         assert_eq!(mesh.positions()[4], Vec3::new(0.05, -0.1, 1.0));
         assert_eq!(mesh.positions()[0], Vec3::new(0.0, 0.1, 1.0));
         assert_eq!(mesh.triangles(), &[[3, 2, 1], [3, 1, 0], [2, 3, 4]]);
+    }
+
+    #[test]
+    fn loose_vertices_and_unused_texture_coordinates_are_named() {
+        let loose = write("loose.obj", "v 0 0 0\nv 1 0 0\nv 9 9 9\nv 0 1 0\nf 1 2 4\n");
+        let e = read_cloth_obj(&loose, 1.0, 1.0, Vec3::zeros()).unwrap_err();
+        assert!(e.contains("line 3") && e.contains("vertex 3"), "{e}");
+        let unused = write("unused_vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1 2 3\n");
+        let e = read_cloth_obj(&unused, 1.0, 1.0, Vec3::zeros()).unwrap_err();
+        assert!(e.contains("f v/vt"), "{e}");
     }
 }

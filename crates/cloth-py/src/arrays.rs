@@ -92,22 +92,26 @@ pub fn plane_points(
         .collect())
 }
 
-/// A point given as three numbers.
-pub fn point(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec3> {
+/// `N` finite numbers (a tuple, list or array).
+pub fn numbers<const N: usize>(value: &Bound<'_, PyAny>, name: &str) -> PyResult<[f64; N]> {
     let array = float_array(value, name)?;
     let shape = shape_of(&array)?;
-    if shape != [3] {
+    if shape != [N] {
         return Err(PyValueError::new_err(format!(
-            "{name}: expected 3 numbers, got shape {}",
+            "{name}: expected {N} numbers, got shape {}",
             describe(&shape)
         )));
     }
     let v: Vec<f64> = array.call_method0("tolist")?.extract()?;
-    let p = Vec3::new(v[0], v[1], v[2]);
-    if !p.iter().all(|c| c.is_finite()) {
+    if !v.iter().all(|c| c.is_finite()) {
         return Err(PyValueError::new_err(format!("{name}: not finite")));
     }
-    Ok(p)
+    Ok(std::array::from_fn(|k| v[k]))
+}
+
+/// A point given as three numbers.
+pub fn point(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec3> {
+    numbers::<3>(value, name).map(Vec3::from)
 }
 
 /// Non-negative integers of shape `(N, C)`, each below `bound`.

@@ -1,7 +1,7 @@
 //! `cloth.Body`: a rigid body built as a scene's `[[bodies]]` entry is, so the checks and
 //! messages are the scene file's.
 
-use crate::arrays::{index_array, points as read_points, vec3_array};
+use crate::arrays::{index_array, numbers, points as read_points, vec3_array};
 use crate::convert::to_toml;
 use crate::errors::input;
 use cloth::collide::{Bodies, TriSurface};
@@ -138,13 +138,13 @@ impl Body {
     #[staticmethod]
     #[pyo3(signature = (size, *, position = None, thickness = None, friction = None, name = None))]
     fn r#box(
-        size: (f64, f64, f64),
+        size: &Bound<'_, PyAny>,
         position: Option<&Bound<'_, PyAny>>,
         thickness: Option<f64>,
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
-        let shape = table(&[("size", floats(&[size.0, size.1, size.2]))]);
+        let shape = table(&[("size", floats(&numbers::<3>(size, "size")?))]);
         let common = Common {
             position,
             thickness,
@@ -184,7 +184,7 @@ impl Body {
     #[pyo3(signature = (size, height, *, leg_width = 0.06, leg_inset = 0.05, position = None, thickness = None, friction = None, name = None))]
     #[allow(clippy::too_many_arguments)]
     fn table(
-        size: (f64, f64, f64),
+        size: &Bound<'_, PyAny>,
         height: f64,
         leg_width: f64,
         leg_inset: f64,
@@ -194,7 +194,7 @@ impl Body {
         name: Option<String>,
     ) -> PyResult<Self> {
         let shape = table(&[
-            ("size", floats(&[size.0, size.1, size.2])),
+            ("size", floats(&numbers::<3>(size, "size")?)),
             ("height", toml::Value::Float(height)),
             ("leg_width", toml::Value::Float(leg_width)),
             ("leg_inset", toml::Value::Float(leg_inset)),

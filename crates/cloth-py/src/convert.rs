@@ -10,6 +10,16 @@ use serde::Serialize;
 
 /// A Python dict (or list, number, string, bool) as a TOML value; `what` names it in errors.
 pub fn to_toml(value: &Bound<'_, PyAny>, what: &str) -> PyResult<toml::Value> {
+    nested(value, what, 0)
+}
+
+/// Deeper than any scene: a list that contains itself ends here, not in a stack overflow.
+const MAX_DEPTH: usize = 32;
+
+fn nested(value: &Bound<'_, PyAny>, what: &str, depth: usize) -> PyResult<toml::Value> {
+    if depth > MAX_DEPTH {
+        return Err(PyValueError::new_err(format!("{what}: nested too deeply")));
+    }
     if value.is_instance_of::<PyBool>() {
         return Ok(toml::Value::Boolean(value.extract()?));
     }
@@ -31,8 +41,12 @@ pub fn to_toml(value: &Bound<'_, PyAny>, what: &str) -> PyResult<toml::Value> {
             let key: String = k
                 .extract()
                 .map_err(|_| PyTypeError::new_err(format!("{what}: keys must be strings, got {k:?}")))?;
+            // None leaves a key out, as a missing key in a file.
+            if v.is_none() {
+                continue;
+            }
             let inner = format!("{what}.{key}");
-            table.insert(key, to_toml(&v, &inner)?);
+            table.insert(key, nested(&v, &inner, depth + 1)?);
         }
         return Ok(toml::Value::Table(table));
     }
@@ -47,15 +61,15 @@ pub fn to_toml(value: &Bound<'_, PyAny>, what: &str) -> PyResult<toml::Value> {
             let items = plain
                 .try_iter()?
                 .enumerate()
-                .map(|(k, item)| to_toml(&item?, &format!("{what}[{k}]")))
+                .map(|(k, item)| nested(&item?, &format!("{what}[{k}]"), depth + 1))
                 .collect::<PyResult<Vec<_>>>()?;
             return Ok(toml::Value::Array(items));
         }
-        return to_toml(&plain, what);
+        return nested(&plain, what, depth + 1);
     }
     if value.hasattr("__fspath__")? {
         let path = value.call_method0("__fspath__")?;
-        return to_toml(&path, what);
+        return nested(&path, what, depth + 1);
     }
     Err(PyTypeError::new_err(format!(
         "{what}: cannot use a {} here (give dicts, lists, numbers, strings or booleans)",

@@ -8,7 +8,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 pyo3::create_exception!(
-    _cloth,
+    cloth,
     SimulationError,
     PyRuntimeError,
     "A run that diverged or otherwise could not go on, on valid input. The simulation \

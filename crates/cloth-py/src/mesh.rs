@@ -1,6 +1,6 @@
 //! `cloth.ClothMesh`: the cloth's triangles with positions and material coordinates.
 
-use crate::arrays::{index_array, indices, plane_points, point, points, vec2_array, vec3_array};
+use crate::arrays::{index_array, indices, numbers, plane_points, point, points, vec2_array, vec3_array};
 use crate::errors::input;
 use cloth::{GridBuilder, Vec3};
 use numpy::PyArray2;
@@ -26,14 +26,15 @@ impl ClothMesh {
     fn grid(
         nx: usize,
         ny: usize,
-        size: (f64, f64),
+        size: &Bound<'_, PyAny>,
         origin: Option<&Bound<'_, PyAny>>,
         u_axis: Option<&Bound<'_, PyAny>>,
         v_axis: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let or = |v: Option<&Bound<'_, PyAny>>, name, default| v.map_or(Ok(default), |v| point(v, name));
+        let [width, height] = numbers::<2>(size, "size")?;
         let mesh = GridBuilder::new(nx, ny)
-            .size(size.0, size.1)
+            .size(width, height)
             .origin(or(origin, "origin", Vec3::zeros())?)
             .axes(or(u_axis, "u_axis", Vec3::x())?, or(v_axis, "v_axis", Vec3::y())?)
             .build()

@@ -20,9 +20,7 @@ pub struct Watcher {
     every: u64,
     last_check: Instant,
     /// What stopped the run from Python: the callback's exception, or KeyboardInterrupt.
-    pub error: Option<PyErr>,
-    /// The callback returned False.
-    pub stopped: bool,
+    error: Option<PyErr>,
 }
 
 impl Watcher {
@@ -35,7 +33,6 @@ impl Watcher {
             every,
             last_check: Instant::now(),
             error: None,
-            stopped: false,
         })
     }
 
@@ -68,7 +65,6 @@ impl Watcher {
                     }
                     // Only an explicit False stops: a callback returning nothing goes on.
                     Ok(r) if r.bind(py).is(pyo3::types::PyBool::new(py, false)) => {
-                        self.stopped = true;
                         return ControlFlow::Break(());
                     }
                     Ok(_) => {}

@@ -112,7 +112,7 @@ impl Scene {
         }
         let run = py.detach(|| prepared.run_into(&self.file, &out_dir, &mut watcher));
         let FolderRun { result, written } = run.map_err(|e| match e {
-            RunFolderError::Write { .. } => PyOSError::new_err(e.to_string()),
+            RunFolderError::Write { .. } | RunFolderError::Create { .. } => PyOSError::new_err(e.to_string()),
             e => input(e),
         })?;
         // Python stopped it (Ctrl-C, or the callback raised): the state reached is written.
