@@ -39,6 +39,16 @@ consecutive_steps = 10
 max_steps = 60
 """
 
+def flat_grid_obj(n: int, h: float) -> str:
+    """An OBJ of an n x n grid of spacing h at z = 1, without texture coordinates."""
+    lines = [f"v {h * i} {h * j} 1" for j in range(n) for i in range(n)]
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a = j * n + i + 1
+            lines += [f"f {a} {a + 1} {a + n + 1}", f"f {a} {a + n + 1} {a + n}"]
+    return "\n".join(lines) + "\n"
+
+
 # A fully specified fabric in SI, without damping or drag (the cotton-like benchmark
 # fabric of the Rust suites).
 COTTON_LIKE_SI = {

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import cloth
+from conftest import flat_grid_obj
 
 G = 9.81
 
@@ -716,12 +717,7 @@ def test_mesh_scene_pins_are_the_files_vertex_numbers(write_scene, tmp_path):
     # A flat 4 x 4 sheet whose faces use its vertices out of file order; pin file vertex 3,
     # the corner at (0.3, 0, 1).
     n, h = 4, 0.1
-    lines = [f"v {h * i} {h * j} 1" for j in range(n) for i in range(n)]
-    for j in range(n - 1):
-        for i in range(n - 1):
-            a = j * n + i + 1
-            lines += [f"f {a} {a + 1} {a + n + 1}", f"f {a} {a + n + 1} {a + n}"]
-    (tmp_path / "sheet.obj").write_text("\n".join(lines) + "\n")
+    (tmp_path / "sheet.obj").write_text(flat_grid_obj(n, h))
     scene = write_scene(
         '[cloth.mesh]\nfile = "sheet.obj"\npins = [3]\n[fabric]\npreset = "cotton_poplin"\n'
         "[rest]\ntolerance = 1e-5\nconsecutive_steps = 5\nmax_steps = 20\n[output]\nglb = false\npng = false\n"
@@ -750,21 +746,6 @@ def test_sizes_take_any_sequence_and_none_leaves_a_key_out():
     # None is a missing key: the default (no damping) instead of silk's.
     undamped = cloth.Fabric.from_si({**silk, "damping": None})
     assert undamped == cloth.Fabric.from_si({k: v for k, v in silk.items() if k != "damping"})
-
-
-def test_a_simulation_error_survives_pickling_as_a_worker_would_send_it():
-    import pickle
-
-    sim = cloth.Simulation(
-        cloth.ClothMesh.grid(6, 6, (0.2, 0.2)),
-        cloth.Fabric.preset("cotton_poplin"),
-        settings={"max_speed": 1e-3},
-    )
-    with pytest.raises(cloth.SimulationError) as e:
-        sim.step(5)
-    back = pickle.loads(pickle.dumps(e.value))
-    assert type(back) is cloth.SimulationError and str(back) == str(e.value)
-    assert back.step == e.value.step == 1
 
 
 def test_nesting_that_never_ends_is_an_error_not_a_crash():

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import cloth
+from conftest import flat_grid_obj
 
 NX, NY, SIZE = 4, 3, (0.3, 0.2)
 
@@ -260,13 +261,8 @@ def test_obj_round_trip_of_a_mesh(tmp_path):
 
 def test_a_flat_obj_without_uv_is_its_own_rest_shape(tmp_path):
     n, h = 5, 0.1
-    lines = [f"v {h * i} {h * j} 1" for j in range(n) for i in range(n)]
-    for j in range(n - 1):
-        for i in range(n - 1):
-            a = j * n + i + 1
-            lines += [f"f {a} {a + 1} {a + n + 1}", f"f {a} {a + n + 1} {a + n}"]
     path = tmp_path / "flat.obj"
-    path.write_text("\n".join(lines) + "\n")
+    path.write_text(flat_grid_obj(n, h))
     mesh = cloth.ClothMesh.load(path)
     assert mesh.vertex_count == n * n and mesh.triangle_count == 2 * (n - 1) ** 2
     assert mesh.rest_area == pytest.approx(((n - 1) * h) ** 2, rel=1e-9)

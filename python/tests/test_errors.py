@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import pickle
 import signal
 import threading
 
@@ -105,6 +106,9 @@ def test_a_speed_limit_breach_is_a_simulation_error_that_keeps_the_state():
     assert "step 1" in str(err), str(err)
     assert sim.step_count == 0
     np.testing.assert_array_equal(sim.positions, mesh.positions)
+    # It survives pickling, as a worker process sends it back.
+    back = pickle.loads(pickle.dumps(err))
+    assert type(back) is cloth.SimulationError and str(back) == str(err) and back.step == 1
     # The same through run_to_rest.
     with pytest.raises(cloth.SimulationError) as e:
         sim.run_to_rest(max_steps=10)

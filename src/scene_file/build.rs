@@ -127,7 +127,7 @@ impl SceneFile {
                         source,
                     })?;
                 let g = mesh.grid().expect("a grid builder makes a grid");
-                let mut builder = SimulationBuilder::new(mesh, fabric.clone()).settings(self.solver.clone());
+                let mut builder = SimulationBuilder::new(mesh, fabric.clone());
                 for (k, &[i, j]) in pins.iter().enumerate() {
                     if i >= *nx || j >= *ny {
                         return Err(invalid(
@@ -137,7 +137,7 @@ impl SceneFile {
                     }
                     builder = builder.pin(Pin::fixed(g.index(i, j)));
                 }
-                (sheet(builder, &bodies, None), Vec::new())
+                (sheet(builder, self, &bodies, None), Vec::new())
             }
             ClothSpec::Mesh {
                 file: mesh_file,
@@ -158,10 +158,8 @@ impl SceneFile {
                         format!("vertex {i}, but the mesh has {n} (numbered from 0)"),
                     ));
                 }
-                let builder = SimulationBuilder::new(mesh, fabric)
-                    .settings(self.solver.clone())
-                    .pins(pins.iter().map(|&i| Pin::fixed(i)));
-                (sheet(builder, &bodies, None), Vec::new())
+                let builder = SimulationBuilder::new(mesh, fabric).pins(pins.iter().map(|&i| Pin::fixed(i)));
+                (sheet(builder, self, &bodies, None), Vec::new())
             }
             ClothSpec::Cusick { edge_length, damping } => {
                 let mut test = CusickTest::new(fabric);
@@ -169,9 +167,8 @@ impl SceneFile {
                 test.damping = *damping;
                 let builder = test
                     .simulation_builder()
-                    .map_err(|e| invalid("cloth.cusick", e.to_string()))?
-                    .settings(self.solver.clone());
-                (sheet(builder, &bodies, Some(SheetTest::Cusick)), Vec::new())
+                    .map_err(|e| invalid("cloth.cusick", e.to_string()))?;
+                (sheet(builder, self, &bodies, Some(SheetTest::Cusick)), Vec::new())
             }
             ClothSpec::Cantilever { overhang, cells } => {
                 if !(overhang.is_finite() && *overhang > 0.0) || *cells < 2 {
@@ -188,10 +185,10 @@ impl SceneFile {
                 let (builder, grid) = test
                     .simulation_builder()
                     .map_err(|e| invalid("cloth.cantilever", e.to_string()))?;
-                let builder = builder.settings(self.solver.clone());
                 (
                     sheet(
                         builder,
+                        self,
                         &bodies,
                         Some(SheetTest::Cantilever {
                             test: Box::new(test),
@@ -211,8 +208,14 @@ impl SceneFile {
     }
 }
 
-/// A sheet's run, on the bodies if there are any.
-fn sheet(builder: SimulationBuilder, bodies: &Arc<Bodies>, test: Option<SheetTest>) -> PreparedCloth {
+/// A sheet's run with the scene's solver settings, on the bodies if there are any.
+fn sheet(
+    builder: SimulationBuilder,
+    scene: &SceneFile,
+    bodies: &Arc<Bodies>,
+    test: Option<SheetTest>,
+) -> PreparedCloth {
+    let builder = builder.settings(scene.solver.clone());
     let builder = if bodies.bodies().is_empty() {
         builder
     } else {

@@ -53,11 +53,11 @@ pub fn read_cloth_obj(path: &Path, scale: f64, uv_scale: f64, offset: Vec3) -> R
     if with_uv {
         return ClothMesh::with_corner_uv(positions, triangles, corner_uv).map_err(|e| e.to_string());
     }
-    if !obj.texcoords.is_empty() {
-        return Err(
-            "the file has texture coordinates (vt) but its faces do not use them: write faces as f v/vt"
-                .into(),
-        );
+    if let Some(line) = obj.first_texcoord_line {
+        return Err(format!(
+            "line {line}: the file has texture coordinates (vt) but its faces do not use them: \
+             write faces as f v/vt"
+        ));
     }
     let uv = flat_coordinates(&positions)?;
     ClothMesh::new(positions, uv, triangles).map_err(|e| e.to_string())
@@ -71,6 +71,7 @@ struct ObjData {
     /// The line of each vertex.
     vertex_lines: Vec<usize>,
     texcoords: Vec<Vector2<f64>>,
+    first_texcoord_line: Option<usize>,
     /// Each face with its line number.
     faces: Vec<(usize, Face)>,
 }
@@ -82,6 +83,7 @@ fn parse_obj(text: &str) -> Result<ObjData, String> {
         vertices: Vec::new(),
         vertex_lines: Vec::new(),
         texcoords: Vec::new(),
+        first_texcoord_line: None,
         faces: Vec::new(),
     };
     for (n, raw) in text.lines().enumerate() {
@@ -108,6 +110,7 @@ fn parse_obj(text: &str) -> Result<ObjData, String> {
             Some("vt") => {
                 let t = numbers(words, 2, "a texture coordinate (vt)")?;
                 obj.texcoords.push(Vector2::new(t[0], t[1]));
+                obj.first_texcoord_line.get_or_insert(line);
             }
             Some("f") => {
                 let (mut v, mut t) = (Vec::new(), Vec::new());
@@ -263,6 +266,6 @@ mod tests {
         assert!(e.contains("line 3") && e.contains("vertex 3"), "{e}");
         let unused = write("unused_vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1 2 3\n");
         let e = read_cloth_obj(&unused, 1.0, 1.0, Vec3::zeros()).unwrap_err();
-        assert!(e.contains("f v/vt"), "{e}");
+        assert!(e.contains("line 4") && e.contains("f v/vt"), "{e}");
     }
 }

@@ -4,7 +4,7 @@
 
 use super::observer::RunObserver;
 use super::records::OutputSpec;
-use super::report::{Checkpoint, FrameRecord, StageReport, StrainSummary};
+use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport, StrainSummary};
 use crate::obj::write_cloth_obj_with_uv;
 use cloth_core::{ClothMesh, Simulation, StepStats, Vec3};
 use std::ops::ControlFlow;
@@ -27,10 +27,19 @@ pub(super) struct Recorder<'a> {
     steps: u64,
     cg: usize,
     step_ms: Vec<f64>,
-    pub(super) checkpoint_rows: Vec<Checkpoint>,
-    pub(super) frames: Vec<FrameRecord>,
+    checkpoint_rows: Vec<Checkpoint>,
+    frames: Vec<FrameRecord>,
     /// Why the recorder itself stopped the run (a frame it could not write).
-    pub(super) failure: Option<String>,
+    failure: Option<String>,
+}
+
+/// What a run leaves: its last good state and what was recorded on the way.
+pub(super) struct Recorded {
+    pub mesh: ClothMesh,
+    pub positions: Vec<Vec3>,
+    pub time: f64,
+    pub checkpoints: Vec<Checkpoint>,
+    pub frames: Vec<FrameRecord>,
 }
 
 impl<'a> Recorder<'a> {
@@ -93,12 +102,37 @@ impl<'a> Recorder<'a> {
         &self.positions
     }
 
-    pub(super) fn time(&self) -> f64 {
-        self.time
+    /// How a stage the recorder's observer stopped ended: failed when the recorder
+    /// itself stopped it, else interrupted.
+    pub(super) fn stopped_label(&self) -> &'static str {
+        if self.failure.is_some() {
+            "failed"
+        } else {
+            "interrupted"
+        }
     }
 
-    pub(super) fn into_state(self) -> (ClothMesh, Vec<Vec3>) {
-        (self.mesh, self.positions)
+    /// The outcome of a run the observer stopped.
+    pub(super) fn stopped(&self) -> RunOutcome {
+        let (stage, step) = (self.stage, self.steps);
+        match &self.failure {
+            Some(error) => RunOutcome::Failed {
+                stage,
+                step,
+                error: error.clone(),
+            },
+            None => RunOutcome::Interrupted { stage, step },
+        }
+    }
+
+    pub(super) fn finish(self) -> Recorded {
+        Recorded {
+            mesh: self.mesh,
+            positions: self.positions,
+            time: self.time,
+            checkpoints: self.checkpoint_rows,
+            frames: self.frames,
+        }
     }
 
     /// After every step of the current stage.
@@ -140,8 +174,11 @@ impl<'a> Recorder<'a> {
         };
         let name = format!("frame_{:05}.obj", self.frames.len() + 1);
         let path: PathBuf = dir.join(&name);
-        std::fs::create_dir_all(dir)
-            .and_then(|()| write_cloth_obj_with_uv(&path, sim.mesh(), sim.positions()))
+        let made = match self.frames.is_empty() {
+            true => std::fs::create_dir_all(dir),
+            false => Ok(()),
+        };
+        made.and_then(|()| write_cloth_obj_with_uv(&path, sim.mesh(), sim.positions()))
             .map_err(|e| format!("writing frame '{}': {e}", path.display()))?;
         let folder = dir
             .file_name()

@@ -4,7 +4,7 @@
 
 use super::build::{Prepared, PreparedCloth, SheetTest};
 use super::observer::RunObserver;
-use super::recorder::Recorder;
+use super::recorder::{Recorded, Recorder};
 use super::records::SceneFile;
 use super::report::{Measurement, RunOutcome, RunReport, RunSettings, StrainSummary};
 use super::SceneFileError;
@@ -42,7 +42,7 @@ impl Prepared {
     ) -> Result<RunResult, SceneFileError> {
         let start = Instant::now();
         let mut stages = Vec::new();
-        let mut outcome = RunOutcome::Finished;
+        let outcome;
         let mut gap = None;
         let mut sheet_test = None;
         let (settings, rec) = match self.cloth {
@@ -70,25 +70,17 @@ impl Prepared {
                         match drape(&sewn, self.bodies.clone(), &scene.drape, |sim, s| {
                             rec.step(sim, s)
                         }) {
-                            Ok(draped) => {
-                                stages.push(rec.end(ended(draped.outcome.reason)));
-                                if draped.outcome.reason == StopReason::Stopped {
-                                    outcome = stopped(&rec);
-                                }
-                            }
+                            Ok(draped) => outcome = ended(&mut rec, &mut stages, draped.outcome.reason),
                             Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
                         }
                     }
                     Err(GarmentError::Stopped { .. }) => {
-                        stages.push(rec.end("interrupted"));
-                        outcome = stopped(&rec);
+                        outcome = ended(&mut rec, &mut stages, StopReason::Stopped)
                     }
                     Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
                 }
-                if outcome != RunOutcome::Finished && stages.len() == 1 {
-                    // Never welded: the gap now.
-                    gap = Some(garment.widest_gap(rec.positions()).1);
-                }
+                // Never welded: the gap now.
+                gap = gap.or_else(|| Some(garment.widest_gap(rec.positions()).1));
                 (
                     RunSettings::Garment {
                         sewing: scene.sewing,
@@ -106,12 +98,7 @@ impl Prepared {
                 let mut rec = Recorder::new(observer, &scene.output, frames_dir, sim.mesh(), sim.positions());
                 rec.begin("running", scene.rest.max_steps);
                 match sim.run_to_rest_with(&scene.rest, |sim, s| rec.step(sim, s)) {
-                    Ok(out) => {
-                        stages.push(rec.end(ended(out.reason)));
-                        if out.reason == StopReason::Stopped {
-                            outcome = stopped(&rec);
-                        }
-                    }
+                    Ok(out) => outcome = ended(&mut rec, &mut stages, out.reason),
                     Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
                 }
                 (
@@ -123,17 +110,13 @@ impl Prepared {
                 )
             }
         };
-        if let (Some(error), RunOutcome::Interrupted { stage, step }) = (&rec.failure, &outcome) {
-            // The recorder, not the user, stopped it.
-            outcome = RunOutcome::Failed {
-                stage,
-                step: *step,
-                error: error.clone(),
-            };
-        }
-        let (checkpoints, frames) = (rec.checkpoint_rows.clone(), rec.frames.clone());
-        let time = rec.time();
-        let (mesh, positions) = rec.into_state();
+        let Recorded {
+            mesh,
+            positions,
+            time,
+            checkpoints,
+            frames,
+        } = rec.finish();
         let (deepest, _) = self.bodies.deepest_inside(time, &positions);
         let measurement = match (&outcome, sheet_test) {
             (RunOutcome::Finished, Some(test)) => Some(measure(test, &mesh, &positions)),
@@ -189,11 +172,17 @@ fn measure(test: SheetTest, mesh: &ClothMesh, positions: &[Vec3]) -> Measurement
     }
 }
 
-/// The outcome of a run its observer stopped.
-fn stopped(rec: &Recorder) -> RunOutcome {
-    RunOutcome::Interrupted {
-        stage: rec.stage(),
-        step: rec.steps(),
+/// Ends the current stage, which stopped for `reason`; the run's outcome so far.
+fn ended(rec: &mut Recorder, stages: &mut Vec<super::StageReport>, reason: StopReason) -> RunOutcome {
+    let label = match reason {
+        StopReason::AtRest => "at_rest",
+        StopReason::StepLimit => "step_limit",
+        StopReason::Stopped => rec.stopped_label(),
+    };
+    stages.push(rec.end(label));
+    match reason {
+        StopReason::Stopped => rec.stopped(),
+        _ => RunOutcome::Finished,
     }
 }
 
@@ -204,13 +193,5 @@ fn failed(rec: &mut Recorder, stages: &mut Vec<super::StageReport>, error: Strin
         stage: rec.stage(),
         step: rec.steps(),
         error,
-    }
-}
-
-fn ended(reason: StopReason) -> &'static str {
-    match reason {
-        StopReason::AtRest => "at_rest",
-        StopReason::StepLimit => "step_limit",
-        StopReason::Stopped => "interrupted",
     }
 }

@@ -111,7 +111,13 @@ impl RunObserver for Progress {
         if self.verbosity == Verbosity::Quiet {
             return ControlFlow::Continue(());
         }
-        if self.last_strain.is_none_or(|t| t.elapsed() >= STRAIN_EVERY) {
+        // The strain is measured only when it is shown: on the bar every half second,
+        // in a plain line every few seconds.
+        let show = match self.bar {
+            Some(_) => self.last_strain.is_none_or(|t| t.elapsed() >= STRAIN_EVERY),
+            None => self.last_line.elapsed() >= LINE_EVERY,
+        };
+        if show {
             let s = StrainReport::new(sim.mesh(), sim.positions());
             self.strain = (s.max_warp, s.max_weft);
             self.last_strain = Some(Instant::now());
@@ -135,9 +141,11 @@ impl RunObserver for Progress {
         match &self.bar {
             Some(bar) => {
                 bar.inc(1);
-                bar.set_message(self.strain_text());
+                if show {
+                    bar.set_message(self.strain_text());
+                }
             }
-            None if self.last_line.elapsed() >= LINE_EVERY => {
+            None if show => {
                 let rate = stats.step as f64 / self.stage_start.elapsed().as_secs_f64().max(1e-9);
                 eprintln!(
                     "{}: step {}/{} ({rate:.1} steps/s), {}",

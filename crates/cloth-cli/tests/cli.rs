@@ -348,7 +348,7 @@ png = false
         md.contains("Largest stretch after N steps") && md.contains("| running | 30 |"),
         "{md}"
     );
-    assert!(!out.join("cloth.glb").exists() && !out.join("render.png").exists());
+    assert!(!out.join("scene.glb").exists() && !out.join("render.png").exists());
 }
 
 #[test]

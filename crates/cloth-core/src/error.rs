@@ -90,6 +90,18 @@ pub enum SimError {
     },
 }
 
+impl SimError {
+    /// The step that failed; `None` for a parameter refused before any step.
+    pub fn step(&self) -> Option<u64> {
+        match self {
+            Self::Diverged { step, .. } | Self::InvalidPin { step, .. } | Self::Solver { step, .. } => {
+                Some(*step)
+            }
+            Self::Param(_) => None,
+        }
+    }
+}
+
 /// What the divergence guard saw.
 #[derive(Debug, Clone, PartialEq)]
 pub enum DivergenceReason {

@@ -2,7 +2,7 @@
 //! messages are the scene file's.
 
 use crate::arrays::{index_array, numbers, points as read_points, vec3_array};
-use crate::convert::to_toml;
+use crate::convert::{from_toml_value, to_toml};
 use crate::errors::input;
 use cloth::collide::{Bodies, TriSurface};
 use cloth::garment::mannequin::Measurements;
@@ -56,8 +56,7 @@ impl Body {
             table.insert("name".into(), toml::Value::String(n.clone()));
         }
         let what = format!("Body.{shape}");
-        let spec: BodySpec = serde::Deserialize::deserialize(toml::Value::Table(table))
-            .map_err(|e| input(format!("{what}: {}", e.to_string().trim())))?;
+        let spec: BodySpec = from_toml_value(toml::Value::Table(table), &what)?;
         let parts = spec.build("cloth.Body", dir, shape).map_err(input)?;
         let name = common.name.unwrap_or_else(|| match parts.as_slice() {
             [one] => one.name().to_string(),
@@ -239,8 +238,7 @@ impl Body {
         }
         if with_arms {
             // As `cloth mannequin --arms`: the average arms, their length scaled to the body.
-            let body: Measurements = serde::Deserialize::deserialize(toml::Value::Table(shape.clone()))
-                .map_err(|e| input(format!("Body.mannequin: {}", e.to_string().trim())))?;
+            let body: Measurements = from_toml_value(toml::Value::Table(shape.clone()), "Body.mannequin")?;
             let arms = toml::Value::try_from(body.with_arms().arms)
                 .map_err(|e| input(format!("Body.mannequin: arms: {e}")))?;
             shape.insert("arms".into(), arms);

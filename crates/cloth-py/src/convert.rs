@@ -80,8 +80,12 @@ fn nested(value: &Bound<'_, PyAny>, what: &str, depth: usize) -> PyResult<toml::
 /// A record from a Python dict; serde's message (an unknown key, a missing one, a wrong
 /// type) is prefixed with `what`.
 pub fn from_dict<T: DeserializeOwned>(value: &Bound<'_, PyAny>, what: &str) -> PyResult<T> {
-    let v = to_toml(value, what)?;
-    T::deserialize(v).map_err(|e| PyValueError::new_err(format!("{what}: {}", e.to_string().trim())))
+    from_toml_value(to_toml(value, what)?, what)
+}
+
+/// A record from a TOML value; serde's message is prefixed with `what`.
+pub fn from_toml_value<T: DeserializeOwned>(value: toml::Value, what: &str) -> PyResult<T> {
+    T::deserialize(value).map_err(|e| PyValueError::new_err(format!("{what}: {}", e.to_string().trim())))
 }
 
 /// A record as Python dicts, lists and numbers.

@@ -33,29 +33,22 @@ pub fn simulation(py: Python<'_>, message: &str, step: u64, report: Option<Bound
 
 /// A stepping error: parameters are input, the rest a failed run.
 pub fn sim(py: Python<'_>, e: &SimError) -> PyErr {
-    match e {
-        SimError::Param(p) => input(p),
-        SimError::Diverged { step, .. }
-        | SimError::InvalidPin { step, .. }
-        | SimError::Solver { step, .. } => simulation(py, &e.to_string(), *step, None),
+    match e.step() {
+        Some(step) => simulation(py, &e.to_string(), step, None),
+        None => input(e),
     }
 }
 
 /// A garment error: what the pattern or settings got wrong is input; seams that will not
 /// close and divergences are failed runs.
 pub fn garment(py: Python<'_>, e: &GarmentError) -> PyErr {
-    match e {
-        GarmentError::NotSewn { steps, .. } => simulation(py, &e.to_string(), *steps, None),
-        GarmentError::Stopped { steps, .. } => simulation(py, &e.to_string(), *steps, None),
-        GarmentError::Sim { source, .. } => {
-            let step = match source {
-                SimError::Diverged { step, .. }
-                | SimError::InvalidPin { step, .. }
-                | SimError::Solver { step, .. } => *step,
-                SimError::Param(_) => return input(e),
-            };
-            simulation(py, &e.to_string(), step, None)
-        }
-        _ => input(e),
+    let step = match e {
+        GarmentError::NotSewn { steps, .. } | GarmentError::Stopped { steps, .. } => Some(*steps),
+        GarmentError::Sim { source, .. } => source.step(),
+        _ => None,
+    };
+    match step {
+        Some(step) => simulation(py, &e.to_string(), step, None),
+        None => input(e),
     }
 }

@@ -1,11 +1,11 @@
 //! `cloth.Fabric`: a fabric's SI parameters, from a preset, SI values or a KES-F record.
 
-use crate::convert::{from_dict, to_python, to_toml};
+use crate::convert::{from_dict, to_python};
 use crate::errors::input;
 use cloth::presets::FabricLibrary;
 use cloth::KesMeasurement;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
+use pyo3::types::PyDict;
 
 /// A fabric's mechanical properties in SI units (the model's parameters). Made from a
 /// preset, from SI values (the keys of a scene's `[fabric.si]`), or from a Kawabata (KES-F)
@@ -74,21 +74,11 @@ impl Fabric {
     /// A copy with some SI values replaced (`f.with_values(damping=0.01)`).
     #[pyo3(signature = (**changes))]
     fn with_values(&self, py: Python<'_>, changes: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let values = to_python(py, &self.inner)?;
-        let mut table = match to_toml(&values, "fabric.si")? {
-            toml::Value::Table(t) => t,
-            _ => unreachable!("a fabric serialises to a table"),
-        };
+        let values = to_python(py, &self.inner)?.cast_into::<PyDict>()?;
         if let Some(changes) = changes {
-            for (k, v) in changes.iter() {
-                let key: String = k.cast::<PyString>()?.to_string();
-                let what = format!("fabric.si.{key}");
-                table.insert(key, to_toml(&v, &what)?);
-            }
+            values.update(changes.as_mapping())?;
         }
-        let fabric: cloth::Fabric = serde::Deserialize::deserialize(toml::Value::Table(table))
-            .map_err(|e| input(format!("fabric.si: {}", e.to_string().trim())))?;
-        Self::checked(fabric)
+        Self::from_si(&values)
     }
 
     /// Mass per area, kg/m^2.

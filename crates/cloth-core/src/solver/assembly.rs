@@ -35,8 +35,6 @@ struct HingeElement {
     /// The first wing's fabric's law, and the mean of the wings' Rayleigh damping.
     law: BendingLaw,
     damping: f64,
-    /// Rest areas of the wings holding `v[2]` and `v[3]`.
-    wing_areas: [f64; 2],
     slots: [u32; 16],
 }
 
@@ -105,18 +103,19 @@ pub(crate) struct ForceModel {
 
 impl ForceModel {
     /// Builds the elements and the matrix pattern they fill. Triangle `t` is of
-    /// `fabrics[triangle_fabric[t]]` (all of the first when `triangle_fabric` is empty, as
-    /// the builder checked); `seams` are the particle pairs that seam forces may pull
-    /// together (see [`SeamPull`]); `calibration` gives each fabric's bending calibration
-    /// instead of computing it.
+    /// `fabrics[triangle_fabric[t]]` (as the builder checked); `seams` are the particle
+    /// pairs that seam forces may pull together (see [`SeamPull`]); `calibration` gives
+    /// each fabric's bending calibration instead of computing it; hinges along a clamp of
+    /// `pinned` particles are stiffened (see [`bending::clamp_factor`]).
     pub fn new(
         mesh: &ClothMesh,
         fabrics: Vec<Fabric>,
         triangle_fabric: &[usize],
         seams: &[[usize; 2]],
         calibration: Option<Vec<[f64; 2]>>,
+        pinned: &[bool],
     ) -> (Self, BlockSparse) {
-        let fabric_of = |t: usize| triangle_fabric.get(t).copied().unwrap_or(0);
+        let fabric_of = |t: usize| triangle_fabric[t];
         let n = mesh.vertex_count();
         let mut pairs = Vec::new();
         for t in mesh.triangles() {
@@ -168,12 +167,12 @@ impl ForceModel {
             .map(|(h, &k)| {
                 let v = [h.edge[0], h.edge[1], h.opposite[0], h.opposite[1]];
                 let [a, b] = h.triangles.map(|t| &fabrics[fabric_of(t)]);
+                let wing_areas = h.triangles.map(|t| mesh.rest_area(t));
                 HingeElement {
                     v: v.map(|i| i as u32),
-                    stiffness: k,
+                    stiffness: k * bending::clamp_factor(v, wing_areas, pinned),
                     law: a.bending_law,
                     damping: 0.5 * (a.damping + b.damping),
-                    wing_areas: h.triangles.map(|t| mesh.rest_area(t)),
                     slots: slots(&v).try_into().expect("16 slots"),
                 }
             })
@@ -233,12 +232,6 @@ impl ForceModel {
         of
     }
 
-    /// Stiffens the hinges along a clamp (see [`bending::clamp_factor`]).
-    pub fn clamp_hinges(&mut self, pinned: &[bool]) {
-        for h in &mut self.hinges {
-            h.stiffness *= bending::clamp_factor(h.v.map(|i| i as usize), h.wing_areas, pinned);
-        }
-    }
     /// Sets how hard the seams pull (zero: not at all).
     pub fn set_seam_pull(&mut self, pull: SeamPull) {
         self.seam_pull = pull;
@@ -534,7 +527,14 @@ mod tests {
             exponent: 2.0,
         };
         // One seam pair within the pull's reach and two beyond it, sharing a particle.
-        let (mut model, matrix) = ForceModel::new(&mesh, vec![fabric], &[], &SEAMS, None);
+        let (mut model, matrix) = ForceModel::new(
+            &mesh,
+            vec![fabric],
+            &vec![0; mesh.triangles().len()],
+            &SEAMS,
+            None,
+            &vec![false; mesh.vertex_count()],
+        );
         model.set_seam_pull(SeamPull {
             stiffness: 50.0,
             reach: 0.05,

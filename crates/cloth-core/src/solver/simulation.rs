@@ -29,9 +29,9 @@ pub struct SimulationBuilder {
 impl SimulationBuilder {
     pub fn new(mesh: ClothMesh, fabric: Fabric) -> Self {
         Self {
+            triangle_fabric: vec![0; mesh.triangles().len()],
             mesh,
             fabrics: vec![fabric],
-            triangle_fabric: Vec::new(),
             settings: SolverSettings::default(),
             pins: Vec::new(),
             velocities: None,
@@ -105,7 +105,7 @@ impl SimulationBuilder {
             f.validate()?;
         }
         let triangles = self.mesh.triangles().len();
-        if !self.triangle_fabric.is_empty() && self.triangle_fabric.len() != triangles {
+        if self.triangle_fabric.len() != triangles {
             return Err(ParamError::OutOfRange {
                 name: "triangle_fabric",
                 value: self.triangle_fabric.len() as f64,
@@ -144,23 +144,12 @@ impl SimulationBuilder {
             pins.push(pin);
         }
         let v = match self.velocities {
-            Some(v) if v.len() != n => {
-                return Err(ParamError::OutOfRange {
-                    name: "velocities",
-                    value: v.len() as f64,
-                    expected: "one initial velocity per particle",
-                })
+            Some(v) => {
+                per_particle("velocities", &v, n)?;
+                v
             }
-            Some(v) => v,
             None => vec![Vec3::zeros(); n],
         };
-        if let Some(c) = v.iter().flat_map(|vi| vi.iter()).find(|c| !c.is_finite()) {
-            return Err(ParamError::OutOfRange {
-                name: "velocities",
-                value: *c,
-                expected: "finite components",
-            });
-        }
         let collider_thickness = self.collider.as_ref().map(|c| c.max_thickness());
         if let Some(d) = collider_thickness {
             ParamError::check(
@@ -192,14 +181,14 @@ impl SimulationBuilder {
                 "positive finite factors",
             )?;
         }
-        let (mut model, matrix) = ForceModel::new(
+        let (model, matrix) = ForceModel::new(
             &self.mesh,
             self.fabrics,
             &self.triangle_fabric,
             &self.seams,
             self.bending_calibration,
+            &pinned,
         );
-        model.clamp_hinges(&pinned);
         let contacts = self.collider.map(|collider| {
             let fabrics = model.fabrics();
             let stiffness = 10.0 * fabrics.iter().map(Fabric::membrane_stiffness).fold(0.0, f64::max);
@@ -345,20 +334,7 @@ impl Simulation {
     }
     /// Replaces the velocities (one finite vector per particle).
     pub fn set_velocities(&mut self, v: &[Vec3]) -> Result<(), ParamError> {
-        if v.len() != self.v.len() {
-            return Err(ParamError::OutOfRange {
-                name: "velocities",
-                value: v.len() as f64,
-                expected: "one velocity per particle",
-            });
-        }
-        if let Some(c) = v.iter().flat_map(|vi| vi.iter()).find(|c| !c.is_finite()) {
-            return Err(ParamError::OutOfRange {
-                name: "velocities",
-                value: *c,
-                expected: "finite components",
-            });
-        }
+        per_particle("velocities", v, self.v.len())?;
         self.v.copy_from_slice(v);
         // Friction predicts from the last step's forces, which were of the old motion.
         if let Some(c) = &mut self.contacts {
@@ -369,20 +345,7 @@ impl Simulation {
     /// Moves the particles (one finite point per particle). Pins keep their targets, so a
     /// pinned particle moved here goes back to its pin in the next step.
     pub fn set_positions(&mut self, x: &[Vec3]) -> Result<(), ParamError> {
-        if x.len() != self.x.len() {
-            return Err(ParamError::OutOfRange {
-                name: "positions",
-                value: x.len() as f64,
-                expected: "one position per particle",
-            });
-        }
-        if let Some(c) = x.iter().flat_map(|xi| xi.iter()).find(|c| !c.is_finite()) {
-            return Err(ParamError::OutOfRange {
-                name: "positions",
-                value: *c,
-                expected: "finite components",
-            });
-        }
+        per_particle("positions", x, self.x.len())?;
         self.x.copy_from_slice(x);
         // The warm start and the contact states were of the old configuration.
         self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
@@ -619,6 +582,25 @@ impl Simulation {
             None => crate::contact::ContactMode::Free,
         })
     }
+}
+
+/// Refuses a state array that is not one finite vector per particle.
+fn per_particle(name: &'static str, values: &[Vec3], n: usize) -> Result<(), ParamError> {
+    if values.len() != n {
+        return Err(ParamError::OutOfRange {
+            name,
+            value: values.len() as f64,
+            expected: "one vector per particle",
+        });
+    }
+    if let Some(c) = values.iter().flat_map(|v| v.iter()).find(|c| !c.is_finite()) {
+        return Err(ParamError::OutOfRange {
+            name,
+            value: *c,
+            expected: "finite components",
+        });
+    }
+    Ok(())
 }
 
 fn kinetic_energy(masses: &[f64], v: &[Vec3]) -> f64 {
