@@ -3,14 +3,20 @@
 
 mod cube_corner;
 mod falling_plate;
+mod folding_strip;
+mod sheet_onto_sheet;
 mod sphere_drop;
+mod stacked_sheets;
 mod tablecloth;
 mod tilted_plane;
 mod turning_sphere;
 
 pub use cube_corner::CubeCorner;
 pub use falling_plate::FallingPlate;
+pub use folding_strip::FoldingStrip;
+pub use sheet_onto_sheet::SheetOntoSheet;
 pub use sphere_drop::SphereDrop;
+pub use stacked_sheets::StackedSheets;
 pub use tablecloth::Tablecloth;
 pub use tilted_plane::TiltedPlane;
 pub use turning_sphere::TurningSphere;

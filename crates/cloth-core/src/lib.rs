@@ -17,6 +17,7 @@ pub mod fabric;
 pub mod linalg;
 pub mod mesh;
 pub mod metrics;
+pub mod self_contact;
 pub mod solver;
 
 pub use contact::{Collider, ContactMode, Proximity, SharpFeature, SurfacePoint};
@@ -27,6 +28,7 @@ pub use fabric::{
 };
 pub use mesh::{ClothMesh, GridBuilder, GridDiagonals, GridShape};
 pub use metrics::{GridStretch, StrainReport};
+pub use self_contact::{closest_self_approach, count_self_intersections, Intersections, SelfCollision};
 pub use solver::{
     Constraint, ConstraintKind, Integrator, PcgSettings, Pin, PinMotion, RestCriteria, RestOutcome, SeamPull,
     Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,

@@ -159,7 +159,16 @@ impl ParticleContacts {
 
     /// Chooses the particles in contact for a step of length `h` from `v`, and their
     /// constraints: no velocity into the body; with no slip, none along it either.
-    pub fn constrain(&mut self, h: f64, v: &[Vec3], masses: &[f64], pinned: &[bool]) {
+    /// A particle outside the contact layer that `on_cloth(i, normal)` finds lying on
+    /// other cloth between it and the body (`normal` the body's) is left to that cloth.
+    pub fn constrain(
+        &mut self,
+        h: f64,
+        v: &[Vec3],
+        masses: &[f64],
+        pinned: &[bool],
+        on_cloth: impl Fn(usize, &Vec3) -> bool,
+    ) {
         self.active.clear();
         for (i, s) in self.state.iter_mut().enumerate() {
             let Proximity::Near(p) = s.proximity else {
@@ -171,7 +180,7 @@ impl ParticleContacts {
             // In contact when inside the band, or about to cross into the layer within the
             // step at its present speed: stopping it at the layer beats pushing it back out.
             let approach = p.gap() + h * relative.dot(&n).min(0.0);
-            if pinned[i] || approach > CONTACT_BAND * p.thickness {
+            if pinned[i] || approach > CONTACT_BAND * p.thickness || (p.gap() > 0.0 && on_cloth(i, &n)) {
                 s.mode = ContactMode::Free;
                 s.released = false;
                 continue;
@@ -303,22 +312,11 @@ impl ParticleContacts {
     /// residual `(A dv - b) / h`, what the body had to add for the prescribed velocities.
     /// The solve is exact only to its relative tolerance `accuracy`: a pull smaller than
     /// ten times that of the row's own force is solver noise, not the body pulling.
-    pub fn implicit_reactions(
-        &mut self,
-        a: &BlockSparse,
-        b: &[Vec3],
-        dv: impl Fn(usize) -> Vec3,
-        h: f64,
-        accuracy: f64,
-    ) {
+    pub fn implicit_reactions(&mut self, a: &BlockSparse, b: &[Vec3], dv: &[Vec3], h: f64, accuracy: f64) {
         for c in self.active.iter_mut().filter(|c| c.live) {
             let i = c.particle();
             c.pull_limit = c.pull_limit.max(10.0 * accuracy * b[i].norm() / h);
-            let mut r = -b[i];
-            for slot in a.row(i) {
-                r += a.blocks()[slot] * dv(a.col_of(slot));
-            }
-            c.reaction = r / h;
+            c.reaction = (a.row_product(i, dv) - b[i]) / h;
         }
     }
 
@@ -454,6 +452,15 @@ impl ParticleContacts {
                 .zip(pinned)
                 .map(|(item, &p)| visit(item, p))
                 .fold(SweepCounts::default(), add)
+        }
+    }
+
+    /// Particle `i` was moved by up to `d` after its last query: what is known of its gap
+    /// shrinks by as much, so no query is skipped that should not be.
+    pub fn displaced(&mut self, i: usize, d: f64) {
+        match &mut self.state[i].proximity {
+            Proximity::Near(p) => p.distance -= d,
+            Proximity::Far { gap_lower_bound } => *gap_lower_bound -= d,
         }
     }
 

@@ -8,6 +8,7 @@
 pub mod bending;
 pub mod damping;
 pub mod particle;
+pub mod repulsion;
 pub mod shear;
 pub mod stretch;
 mod triangle_rest;

@@ -1,10 +1,13 @@
-//! A symmetric matrix of 3x3 blocks in compressed rows, with the pattern fixed at build.
+//! A symmetric matrix of 3x3 blocks in compressed rows, with the pattern fixed at build,
+//! plus transient couplings outside it that are set anew each step (contacts of the cloth
+//! with itself, which join particles far apart in the mesh).
 //!
 //! Both triangles are stored so each row's product is independent: the product is
 //! parallel over rows with no reduction across threads, hence identical for any
 //! thread count.
 
 use super::row_chunks::{for_each_entry, for_each_row};
+use super::transient::Transient;
 use crate::{Mat3, Vec3};
 
 #[derive(Debug, Clone)]
@@ -14,6 +17,7 @@ pub struct BlockSparse {
     blocks: Vec<Mat3>,
     diag: Vec<u32>,
     transpose: Vec<u32>,
+    transient: Transient,
 }
 
 impl BlockSparse {
@@ -35,6 +39,7 @@ impl BlockSparse {
             row_ptr.push(cols.len());
         }
         let mut m = Self {
+            transient: Transient::new(n),
             blocks: vec![Mat3::zeros(); cols.len()],
             diag: vec![0; n],
             transpose: vec![0; cols.len()],
@@ -101,9 +106,10 @@ impl BlockSparse {
         for_each_row(&self.row_ptr, &mut self.blocks, parallel, f);
     }
 
-    /// Zeroes every block but the diagonal ones, which become `diagonal(r)`; in parallel
-    /// when `parallel`.
+    /// Zeroes every block but the diagonal ones, which become `diagonal(r)`, and drops the
+    /// transient couplings; in parallel when `parallel`.
     pub fn reset(&mut self, parallel: bool, diagonal: impl Fn(usize) -> Mat3 + Sync) {
+        self.transient.clear();
         let diag = &self.diag;
         for_each_row(&self.row_ptr, &mut self.blocks, parallel, |r, first, row| {
             row.fill(Mat3::zeros());
@@ -139,16 +145,60 @@ impl BlockSparse {
     ) {
         debug_assert_eq!(x.len(), self.n());
         debug_assert_eq!(y.len(), self.n());
-        for_each_entry(y, parallel, |r, yr| {
-            let mut s = Vec3::zeros();
-            for slot in self.row(r) {
-                s += self.blocks[slot] * x[self.cols[slot] as usize];
-            }
-            *yr = f(r, s);
-        });
+        for_each_entry(y, parallel, |r, yr| *yr = f(r, self.row_product(r, x)));
     }
 
-    /// Dense copy (tests and diagnostics).
+    /// `(A x)_r`, the transient couplings included.
+    pub fn row_product(&self, r: usize, x: &[Vec3]) -> Vec3 {
+        let mut s = Vec3::zeros();
+        for slot in self.row(r) {
+            s += self.blocks[slot] * x[self.cols[slot] as usize];
+        }
+        s + self.transient.row_product(r, x)
+    }
+
+    /// Diagonal block `r` of a block diagonal that bounds the matrix's transient couplings
+    /// from above (see [`BlockSparse::add_coupling`]): the fixed pattern's diagonal block
+    /// plus the couplings' bound, for Jacobi smoothing and preconditioning.
+    pub fn smoother_diagonal(&self, r: usize) -> Mat3 {
+        self.blocks[self.diag[r] as usize] + self.transient.smoother_block(r)
+    }
+
+    /// Adds a transient coupling: `G_a^T K G_b` at every pair of its `terms` `(i_a, G_a)`
+    /// (a spring `K` on `sum_a G_a x_{i_a}`), kept outside the fixed pattern's values even
+    /// where the pattern has the block: the fixed values stay the mesh's, which the
+    /// multigrid hierarchy is made for, and the couplings are carried to its coarse levels
+    /// as couplings. Takes effect at [`BlockSparse::finish_transient`].
+    pub fn add_coupling(&mut self, stiffness: Mat3, terms: impl IntoIterator<Item = (usize, Mat3)>) {
+        self.transient.add(stiffness, terms);
+    }
+
+    /// The transient couplings, each `K` with its terms.
+    pub fn couplings(&self) -> impl Iterator<Item = (&Mat3, &[(u32, Mat3)])> + '_ {
+        self.transient.couplings()
+    }
+
+    /// Drops the transient couplings (a reset does too).
+    pub fn clear_transient(&mut self) {
+        self.transient.clear();
+    }
+
+    /// Gathers the transient couplings into rows, for the products.
+    pub fn finish_transient(&mut self) {
+        self.transient.finish();
+    }
+
+    /// The transient couplings: (row, column, block) of each stored block.
+    pub fn transient_blocks(&self) -> impl Iterator<Item = (usize, usize, &Mat3)> + '_ {
+        self.transient.blocks()
+    }
+
+    /// Whether transient couplings are set.
+    pub fn has_transient(&self) -> bool {
+        !self.transient.is_empty()
+    }
+
+    /// Dense copy, the transient couplings included (tests and diagnostics).
     pub fn to_dense(&self) -> nalgebra::DMatrix<f64> {
         let n = self.n();
         let mut d = nalgebra::DMatrix::zeros(3 * n, 3 * n);
@@ -157,6 +207,10 @@ impl BlockSparse {
                 let c = self.col_of(s);
                 d.view_mut((3 * r, 3 * c), (3, 3)).copy_from(&self.blocks[s]);
             }
+        }
+        for (r, c, b) in self.transient.blocks() {
+            let mut view = d.view_mut((3 * r, 3 * c), (3, 3));
+            view += b;
         }
         d
     }

@@ -7,6 +7,7 @@ mod filter;
 mod multigrid;
 mod pcg;
 mod row_chunks;
+mod transient;
 
 pub use block_sparse::BlockSparse;
 pub use filter::{Constraint, ConstraintKind, Filter};

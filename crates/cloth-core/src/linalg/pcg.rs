@@ -140,7 +140,7 @@ pub(crate) fn inverse_diagonal(
 ) -> Result<(), usize> {
     let failed = AtomicUsize::new(usize::MAX);
     for_each_entry(out, parallel, |r, inv| {
-        let d = a.blocks()[a.diag_slot(r)];
+        let d = a.smoother_diagonal(r);
         let d = filter.map_or(d, |f| f.filtered_diagonal(r, &d));
         match spd_inverse(&d) {
             Some(i) => *inv = i,

@@ -96,6 +96,20 @@ impl ClothMesh {
         Self::build(positions, uv, corner_uv, triangles)
     }
 
+    /// Several pieces of cloth as one mesh (the particles of `pieces[1]` numbered after
+    /// those of `pieces[0]`, and so on), each keeping its rest shape: sheets stacked or
+    /// dropped onto one another in one simulation.
+    pub fn join(pieces: &[ClothMesh]) -> Result<Self, MeshError> {
+        let (mut positions, mut triangles, mut corner_uv) = (Vec::new(), Vec::new(), Vec::new());
+        for piece in pieces {
+            let offset = positions.len();
+            positions.extend_from_slice(&piece.positions);
+            triangles.extend(piece.triangles.iter().map(|t| t.map(|i| i + offset)));
+            corner_uv.extend_from_slice(&piece.corner_uv);
+        }
+        Self::with_corner_uv(positions, triangles, corner_uv)
+    }
+
     fn check_indices(n: usize, triangles: &[[usize; 3]]) -> Result<(), MeshError> {
         if triangles.is_empty() {
             return Err(MeshError::Empty);

@@ -55,6 +55,13 @@ impl Simulation {
             let implicit = with_stiffness.then_some((&mut self.matrix, h));
             energy += contacts.add_feature_penalty(&self.x, &self.v, &mut ws.force, &mut ws.hv, implicit);
         }
+        if let Some(sc) = &self.self_contacts {
+            let implicit = with_stiffness.then_some((&mut self.matrix, h));
+            energy += sc.add_forces(&self.x, &self.v, &mut ws.force, &mut ws.hv, implicit);
+        }
+        if with_stiffness {
+            self.matrix.finish_transient();
+        }
         energy
     }
 
@@ -143,13 +150,12 @@ impl Simulation {
             let Some(contacts) = &mut self.contacts else {
                 break;
             };
-            contacts.particles.implicit_reactions(
-                &self.matrix,
-                &ws.b,
-                |j| ws.y[j] + ws.z[j],
-                h,
-                settings.rel_tolerance,
-            );
+            for ((dv, y), z) in ws.dv.iter_mut().zip(&ws.y).zip(&ws.z) {
+                *dv = y + z;
+            }
+            contacts
+                .particles
+                .implicit_reactions(&self.matrix, &ws.b, &ws.dv, h, settings.rel_tolerance);
             // After the scout the step goes on to the full tolerance in any case: with the
             // same system if it let nothing go, else with the freed contacts (a re-solve
             // only frees directions: the preconditioner mostly serves).
@@ -162,7 +168,15 @@ impl Simulation {
                 Setup::Keep
             } else {
                 self.refill_filter(h)?;
-                Setup::RefreshFinest
+                // The freed directions are missing from the kept coarse spaces; the cloth
+                // alone lets the smoother make them good in a few iterations, but where it
+                // lies on itself they are tied to the layer above, and only coarse
+                // corrections reach that.
+                if self.matrix.has_transient() {
+                    Setup::Build
+                } else {
+                    Setup::RefreshFinest
+                }
             };
             scouting = false;
             pass += 1;

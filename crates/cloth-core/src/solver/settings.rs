@@ -2,6 +2,7 @@
 
 use crate::error::ParamError;
 use crate::linalg::PcgSettings;
+use crate::self_contact::SelfCollision;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -35,6 +36,10 @@ pub struct SolverSettings {
     pub max_kinetic_energy: f64,
     /// Use rayon for assembly and the matrix-vector product.
     pub parallel: bool,
+    /// The cloth's collision with itself (on by default). Not part of a scene's
+    /// `[solver]` table: a scene sets it once for all its stages, in `[self_collision]`.
+    #[serde(skip)]
+    pub self_collision: SelfCollision,
 }
 
 impl Default for SolverSettings {
@@ -48,6 +53,7 @@ impl Default for SolverSettings {
             max_speed: 100.0,
             max_kinetic_energy: f64::INFINITY,
             parallel: true,
+            self_collision: SelfCollision::default(),
         }
     }
 }
@@ -83,6 +89,6 @@ impl SolverSettings {
                 ParamError::check(c.is_finite(), name, *c, "finite components")?;
             }
         }
-        Ok(())
+        self.self_collision.validate()
     }
 }

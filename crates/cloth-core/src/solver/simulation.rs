@@ -7,6 +7,7 @@ use crate::error::{DivergenceReason, ParamError, SimError};
 use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
 use crate::mesh::ClothMesh;
+use crate::self_contact::{Intersections, SelfContacts};
 use crate::Vec3;
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -202,6 +203,7 @@ impl SimulationBuilder {
                 .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
             c
         });
+        let self_contacts = self_contacts_for(&self.mesh, &self.seams, &self.settings, &model);
         let pin_count = pins.len();
         let filter_capacity = if contacts.is_some() { n } else { pin_count };
         let zeros = vec![Vec3::zeros(); n];
@@ -213,6 +215,8 @@ impl SimulationBuilder {
             pins,
             pinned,
             contacts,
+            seams: self.seams,
+            self_contacts,
             x,
             v,
             time: 0.0,
@@ -225,6 +229,8 @@ impl SimulationBuilder {
                 z: zeros.clone(),
                 az: zeros.clone(),
                 y: zeros.clone(),
+                dv: zeros.clone(),
+                support: zeros.clone(),
                 x_new: zeros.clone(),
                 v_new: zeros,
                 filter: Filter::new(n, filter_capacity),
@@ -247,6 +253,11 @@ pub(super) struct Workspace {
     pub az: Vec<Vec3>,
     /// Last solution of the filtered system, the next solve's initial guess.
     pub y: Vec<Vec3>,
+    /// `y + z`: the velocity change of the last solve.
+    pub dv: Vec<Vec3>,
+    /// The outward normal of the body holding each particle at the end of the step (zero
+    /// for free particles): it does not yield to the cloth's impacts into the body.
+    pub support: Vec<Vec3>,
     pub x_new: Vec<Vec3>,
     pub v_new: Vec<Vec3>,
     pub filter: Filter,
@@ -265,6 +276,9 @@ pub struct Simulation {
     pub(super) pins: Vec<Pin>,
     pub(super) pinned: Vec<bool>,
     pub(super) contacts: Option<Contacts>,
+    /// The seams' particle pairs (exempt from self-collision until welded).
+    pub(super) seams: Vec<[usize; 2]>,
+    pub(super) self_contacts: Option<SelfContacts>,
     pub(super) x: Vec<Vec3>,
     pub(super) v: Vec<Vec3>,
     pub(super) time: f64,
@@ -329,6 +343,9 @@ impl Simulation {
     /// Changes the integrator or its settings between steps.
     pub fn set_settings(&mut self, settings: SolverSettings) -> Result<(), ParamError> {
         settings.validate()?;
+        if settings.self_collision != self.settings.self_collision {
+            self.self_contacts = self_contacts_for(&self.mesh, &self.seams, &settings, &self.model);
+        }
         self.settings = settings;
         Ok(())
     }
@@ -393,27 +410,23 @@ impl Simulation {
             }
             self.ws.pin_targets.push(target);
         }
-        if let Some(contacts) = &mut self.contacts {
-            contacts
-                .particles
-                .constrain(h, &self.v, self.model.masses(), &self.pinned);
-            contacts.detect_features(self.time + h, self.mesh.triangles(), &self.x);
-        }
-        self.refill_filter(h).map_err(|reason| SimError::Solver {
-            step: self.steps + 1,
-            last_good: self.steps,
-            reason,
-        })?;
         // Parallel work started from outside rayon's pool goes through its global injector,
         // which allocates a block every 63 jobs; run the whole step as one job inside the
         // pool instead, so the many parallel loops of a step use a worker's own queue.
         let integrate = |sim: &mut Self| {
+            let start = Instant::now();
+            sim.detect_self_contacts(h);
+            let detection = start.elapsed().as_secs_f64();
+            sim.constrain_contacts(h);
+            sim.refill_filter(h)?;
             let mut stats = match sim.settings.integrator {
                 Integrator::ImplicitEuler => sim.implicit_step(h, velocity_accuracy)?,
                 Integrator::ExplicitEuler => sim.explicit_step(h, false)?,
                 Integrator::SymplecticEuler => sim.explicit_step(h, true)?,
             };
             sim.finish_contacts(h, &mut stats);
+            sim.finish_self_contacts(h, &mut stats);
+            stats.self_collision_seconds += detection;
             Ok(stats)
         };
         let result = if self.settings.parallel && rayon::current_thread_index().is_none() {
@@ -575,6 +588,123 @@ impl Simulation {
         stats.contact_seconds = start.elapsed().as_secs_f64();
     }
 
+    /// The bodies' contacts of a step of length `h`. A particle lying on another layer of
+    /// the cloth that lies between it and the body is the other layer's to hold: held by
+    /// the body too, at the body's own contact distance, it would be pressed into that
+    /// layer.
+    fn constrain_contacts(&mut self, h: f64) {
+        let Some(contacts) = &mut self.contacts else {
+            return;
+        };
+        let sc = self.self_contacts.as_ref();
+        contacts
+            .particles
+            .constrain(h, &self.v, self.model.masses(), &self.pinned, |i, normal| {
+                sc.is_some_and(|sc| sc.lies_on_cloth(i, normal))
+            });
+        contacts.detect_features(self.time + h, self.mesh.triangles(), &self.x);
+    }
+
+    /// Finds the cloth's contacts with itself at the start of a step of length `h`.
+    fn detect_self_contacts(&mut self, h: f64) {
+        let Some(sc) = &mut self.self_contacts else {
+            return;
+        };
+        sc.detect(
+            &self.x,
+            &self.v,
+            self.model.masses(),
+            &self.pinned,
+            h,
+            self.settings.integrator == Integrator::ImplicitEuler,
+            self.settings.parallel,
+        );
+    }
+
+    /// The end-of-step impact passes of the cloth against itself, after the bodies':
+    /// particles pinned or held by a body do not yield to them.
+    fn finish_self_contacts(&mut self, h: f64, stats: &mut StepStats) {
+        let Some(sc) = &mut self.self_contacts else {
+            return;
+        };
+        let start = Instant::now();
+        stats.self_contacts = sc.contacts.len();
+        let ws = &mut self.ws;
+        ws.support.fill(Vec3::zeros());
+        if let Some(contacts) = &self.contacts {
+            for c in contacts.particles.active.iter().filter(|c| c.live) {
+                ws.support[c.particle()] = c.normal;
+            }
+        }
+        let counts = sc.resolve(
+            &self.x,
+            &mut ws.x_new,
+            &mut ws.v_new,
+            self.model.masses(),
+            &self.pinned,
+            &ws.support,
+            h,
+            self.settings.parallel,
+        );
+        if let Some(contacts) = &mut self.contacts {
+            for (i, d) in sc.shifted() {
+                contacts.particles.displaced(i, d);
+            }
+        }
+        stats.self_impacts = counts.impacts;
+        stats.self_zone_particles = counts.zone_particles;
+        stats.self_frozen = counts.frozen;
+        stats.self_unresolved = counts.unresolved;
+        stats.self_collision_seconds += start.elapsed().as_secs_f64();
+    }
+
+    /// The edge-triangle pairs of the cloth that pass through each other now. Exempt are
+    /// the pairs self-collision exempts: those sharing a particle or joined by a seam, and
+    /// those within a few thicknesses of each other in the flat cloth (see
+    /// [`Simulation::self_exemption_radius`]).
+    pub fn self_intersections(&self) -> Intersections {
+        match &self.self_contacts {
+            Some(sc) => sc.intersections(&self.x),
+            None => crate::self_contact::count_self_intersections(
+                &self.mesh,
+                &self.seams,
+                self.self_exemption_radius(),
+                &self.x,
+            ),
+        }
+    }
+
+    /// Pairs of the cloth within this of each other in the flat cloth are exempt from
+    /// self-collision and from its measures, m: a few times the contact distance between
+    /// layers.
+    pub fn self_exemption_radius(&self) -> f64 {
+        let thickest = self.settings.self_collision.thickness.unwrap_or_else(|| {
+            self.model
+                .fabrics()
+                .iter()
+                .map(|f| f.thickness)
+                .fold(0.0, f64::max)
+        });
+        crate::self_contact::rest_radius(thickest)
+    }
+
+    /// The cloth's contacts with itself in the last step (none without self-collision).
+    pub fn self_contacts(&self) -> &[crate::self_contact::Contact] {
+        self.self_contacts.as_ref().map_or(&[], |sc| &sc.contacts)
+    }
+
+    /// The smallest distance of a particle from a triangle of the cloth now (pairs
+    /// sharing a particle, or joined by a seam, exempt), if one is under `within` (m).
+    pub fn closest_self_approach(&self, within: f64) -> Option<f64> {
+        crate::self_contact::closest_self_approach(
+            &self.mesh,
+            &self.seams,
+            self.self_exemption_radius(),
+            &self.x,
+            within,
+        )
+    }
+
     /// The particles' contact modes in the last step (all `Free` without bodies).
     pub fn contact_modes(&self) -> impl Iterator<Item = crate::contact::ContactMode> + '_ {
         (0..self.x.len()).map(|i| match &self.contacts {
@@ -582,6 +712,30 @@ impl Simulation {
             None => crate::contact::ContactMode::Free,
         })
     }
+}
+
+/// The self-collision of a simulation with these settings, if they enable it.
+fn self_contacts_for(
+    mesh: &ClothMesh,
+    seams: &[[usize; 2]],
+    settings: &SolverSettings,
+    model: &ForceModel,
+) -> Option<SelfContacts> {
+    let sc = &settings.self_collision;
+    if !sc.enabled {
+        return None;
+    }
+    let fabrics = model.fabrics();
+    let of = model.particle_fabrics();
+    let stiffest = fabrics.iter().map(Fabric::membrane_stiffness).fold(0.0, f64::max);
+    Some(SelfContacts::new(
+        mesh,
+        seams,
+        sc,
+        |i| fabrics[of[i]].thickness,
+        |i| fabrics[of[i]].friction,
+        stiffest,
+    ))
 }
 
 /// Refuses a state array that is not one finite vector per particle.

@@ -40,4 +40,19 @@ pub struct StepStats {
     pub feature_corrections: usize,
     /// Wall time in the end-of-step contact passes, s.
     pub contact_seconds: f64,
+    /// Pairs of the cloth closer than their contact distance, repelled in the step.
+    pub self_contacts: usize,
+    /// Pairs of the cloth found passing through each other in the step and turned back
+    /// by impulses.
+    pub self_impacts: usize,
+    /// Particles moved as impact zones (pairs the impulses did not separate).
+    pub self_zone_particles: usize,
+    /// Particles stopped where they started the step, as the impact zones did not
+    /// separate their pairs (the last resort).
+    pub self_frozen: usize,
+    /// Pairs found passing through each other that nothing could stop (pinned particles
+    /// moved through the cloth).
+    pub self_unresolved: usize,
+    /// Wall time finding the cloth's contacts with itself and resolving its impacts, s.
+    pub self_collision_seconds: f64,
 }

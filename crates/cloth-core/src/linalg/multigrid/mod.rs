@@ -76,6 +76,8 @@ pub struct Multigrid {
     fine_pattern: (Vec<usize>, Vec<u32>),
     scratch: Mutex<(Vec<Scratch>, DVector<f64>)>,
     spectrum: Spectrum,
+    /// Scratch of one coupling's coarse terms.
+    coupling_terms: Vec<(usize, Mat3)>,
 }
 
 /// `y_i = g(i, (A x)_i)`, or with `filter`, `g(i, (S A x)_i)`: the filtered
@@ -138,6 +140,7 @@ impl Multigrid {
             fine_basis: vec![Mat3::identity(); a.n()],
             fine_pattern: (a.row_starts().to_vec(), a.columns().to_vec()),
             spectrum: Spectrum::new(a.n()),
+            coupling_terms: Vec::new(),
             scratch: Mutex::new((scratch, DVector::zeros(3 * n))),
         }
     }
@@ -180,6 +183,13 @@ impl Multigrid {
                 let d = rest[0].diag_slot(c);
                 rest[0].blocks_mut()[d] += empty;
             }
+            coarsen_transient(
+                m,
+                &level.tentative.blocks,
+                &level.aggregates.of_node,
+                &mut rest[0],
+                &mut self.coupling_terms,
+            );
         }
         // The factor is made in the storage of the last one.
         let mut dense = match self.factor.take() {
@@ -274,6 +284,38 @@ impl Multigrid {
     }
 }
 
+/// The transient couplings of `m` (the cloth's contacts with itself, outside the mesh's
+/// pattern) carried to the coarse matrix through the tentative prolongator `T`: a
+/// coupling on `sum_k G_k x_k` becomes one on `sum_k G_k T_k x_{agg(k)}`, each term going
+/// to its particle's own aggregate. The smoothed prolongator would spread every coupling
+/// over the neighbours' aggregates too, and its terms would multiply level by level (a
+/// coupling's blocks grow as the square of its terms): tried from the finest level only,
+/// it cost several times the solve and saved no iterations.
+fn coarsen_transient(
+    m: &BlockSparse,
+    tentative: &[Mat3],
+    of_node: &[u32],
+    coarse: &mut BlockSparse,
+    terms: &mut Vec<(usize, Mat3)>,
+) {
+    coarse.clear_transient();
+    if !m.has_transient() {
+        return;
+    }
+    for (k, fine) in m.couplings() {
+        terms.clear();
+        for &(i, g) in fine {
+            let (a, block) = (of_node[i as usize] as usize, g * tentative[i as usize]);
+            match terms.iter_mut().find(|(b, _)| *b == a) {
+                Some((_, sum)) => *sum += block,
+                None => terms.push((a, block)),
+            }
+        }
+        coarse.add_coupling(*k, terms.iter().copied());
+    }
+    coarse.finish_transient();
+}
+
 /// `P = (I - w D^-1 A) T`, `T` the tentative prolongator; on the finest level the rows
 /// are projected by the filter, so every correction obeys the constraints.
 fn smooth_prolongator(level: &mut Level, m: &BlockSparse, f: Option<&Filter>, parallel: bool) {
@@ -310,5 +352,9 @@ fn dense_into(m: &BlockSparse, filter: Option<&Filter>, out: &mut DMatrix<f64>) 
         }
         let mut diag = out.fixed_view_mut::<3, 3>(3 * r, 3 * r);
         diag += Mat3::identity() - free(r);
+    }
+    for (r, c, b) in m.transient_blocks() {
+        let mut block = out.fixed_view_mut::<3, 3>(3 * r, 3 * c);
+        block += free(r) * b * free(c);
     }
 }

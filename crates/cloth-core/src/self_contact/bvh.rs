@@ -1,0 +1,199 @@
+//! A bounding volume hierarchy of axis-aligned boxes, built once over the cloth's
+//! primitives where they start and refitted to their moving boxes every time it is asked.
+//! Cloth barely stretches, so primitives grouped near each other at the start stay near
+//! each other however the cloth folds: refitting keeps the tree useful without rebuilding.
+
+use crate::Vec3;
+
+/// Primitives per leaf at most.
+const LEAF_SIZE: usize = 4;
+/// Deepest tree a query walks: median splits halve every level, so 2^64 primitives.
+const MAX_DEPTH: usize = 64;
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    pub lo: Vec3,
+    pub hi: Vec3,
+}
+
+impl Aabb {
+    /// The empty box: the union with it changes nothing.
+    pub fn empty() -> Self {
+        Self {
+            lo: Vec3::repeat(f64::INFINITY),
+            hi: Vec3::repeat(f64::NEG_INFINITY),
+        }
+    }
+    pub fn point(p: &Vec3) -> Self {
+        Self { lo: *p, hi: *p }
+    }
+    /// The box of `points`.
+    pub fn of(points: impl IntoIterator<Item = Vec3>) -> Self {
+        let mut b = Self::empty();
+        for p in points {
+            b.grow(&p);
+        }
+        b
+    }
+    pub fn grow(&mut self, p: &Vec3) {
+        self.lo = self.lo.inf(p);
+        self.hi = self.hi.sup(p);
+    }
+    pub fn union(&self, other: &Self) -> Self {
+        Self {
+            lo: self.lo.inf(&other.lo),
+            hi: self.hi.sup(&other.hi),
+        }
+    }
+    /// The box grown by `r` on every side.
+    pub fn inflated(&self, r: f64) -> Self {
+        Self {
+            lo: self.lo.add_scalar(-r),
+            hi: self.hi.add_scalar(r),
+        }
+    }
+    pub fn overlaps(&self, other: &Self) -> bool {
+        (0..3).all(|k| self.lo[k] <= other.hi[k] && other.lo[k] <= self.hi[k])
+    }
+}
+
+/// A node: a leaf holds `count > 0` primitives from `first` in the tree's order; an inner
+/// node's children are the next node and `right`.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    first: u32,
+    count: u32,
+    right: u32,
+}
+
+/// The hierarchy of `len` primitives: its shape, fixed at build, and the boxes of its
+/// nodes, set by [`Bvh::refit`].
+#[derive(Debug, Clone)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    boxes: Vec<Aabb>,
+    /// The primitives in leaf order.
+    order: Vec<u32>,
+}
+
+impl Bvh {
+    /// The tree of primitives whose centres are `centres`, split at the median of the
+    /// longest side of their bounds until leaves hold a few.
+    pub fn new(centres: &[Vec3]) -> Self {
+        let mut order: Vec<u32> = (0..centres.len() as u32).collect();
+        let mut nodes = Vec::with_capacity(2 * centres.len() / LEAF_SIZE + 1);
+        if !centres.is_empty() {
+            split(centres, &mut order, 0, &mut nodes);
+        }
+        let boxes = vec![Aabb::empty(); nodes.len()];
+        Self { nodes, boxes, order }
+    }
+
+    /// Sets every node's box from the primitives' boxes, `bound(i)` that of primitive `i`.
+    /// Children follow their parents in the node list, so one backward pass does it.
+    pub fn refit(&mut self, bound: impl Fn(usize) -> Aabb) {
+        for k in (0..self.nodes.len()).rev() {
+            let node = self.nodes[k];
+            self.boxes[k] = if node.count > 0 {
+                let items = &self.order[node.first as usize..(node.first + node.count) as usize];
+                items
+                    .iter()
+                    .fold(Aabb::empty(), |b, &i| b.union(&bound(i as usize)))
+            } else {
+                self.boxes[k + 1].union(&self.boxes[node.right as usize])
+            };
+        }
+    }
+
+    /// Calls `visit` with every primitive whose leaf's box overlaps `query` (a superset
+    /// of the primitives whose own boxes do).
+    pub fn query(&self, query: &Aabb, mut visit: impl FnMut(usize)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut stack = [0u32; MAX_DEPTH];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let k = stack[top] as usize;
+            if !self.boxes[k].overlaps(query) {
+                continue;
+            }
+            let node = self.nodes[k];
+            if node.count > 0 {
+                for &i in &self.order[node.first as usize..(node.first + node.count) as usize] {
+                    visit(i as usize);
+                }
+            } else {
+                stack[top] = node.right;
+                stack[top + 1] = k as u32 + 1;
+                top += 2;
+            }
+        }
+    }
+}
+
+/// Builds the subtree of `order[..]` (which starts at `first` in the whole order) into
+/// `nodes`, depth first.
+fn split(centres: &[Vec3], order: &mut [u32], first: usize, nodes: &mut Vec<Node>) {
+    let k = nodes.len();
+    nodes.push(Node {
+        first: first as u32,
+        count: order.len() as u32,
+        right: 0,
+    });
+    if order.len() <= LEAF_SIZE {
+        return;
+    }
+    let bounds = Aabb::of(order.iter().map(|&i| centres[i as usize]));
+    let extent = bounds.hi - bounds.lo;
+    let axis = extent.imax();
+    let mid = order.len() / 2;
+    order.select_nth_unstable_by(mid, |&a, &b| {
+        centres[a as usize][axis].total_cmp(&centres[b as usize][axis])
+    });
+    nodes[k].count = 0;
+    let (left, right) = order.split_at_mut(mid);
+    split(centres, left, first, nodes);
+    nodes[k].right = nodes.len() as u32;
+    split(centres, right, first + mid, nodes);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_query_finds_every_overlapping_box_after_a_refit() {
+        // Points on a 30 x 30 grid, then moved (folded over) before the refit.
+        let n = 30;
+        let start: Vec<Vec3> = (0..n * n)
+            .map(|k| Vec3::new((k % n) as f64, (k / n) as f64, 0.0))
+            .collect();
+        let mut bvh = Bvh::new(&start);
+        let moved: Vec<Vec3> = start
+            .iter()
+            .map(|p| {
+                let a = p.x / n as f64 * std::f64::consts::PI;
+                Vec3::new(10.0 * a.cos(), p.y, 10.0 * a.sin())
+            })
+            .collect();
+        bvh.refit(|i| Aabb::point(&moved[i]).inflated(0.3));
+        for q in [
+            Aabb::point(&Vec3::new(0.0, 5.0, 10.0)).inflated(2.0),
+            Aabb::point(&Vec3::new(-10.0, 0.0, 0.0)).inflated(1.5),
+            Aabb::point(&Vec3::new(100.0, 0.0, 0.0)).inflated(1.0),
+        ] {
+            let mut found = Vec::new();
+            bvh.query(&q, |i| found.push(i));
+            for (i, p) in moved.iter().enumerate() {
+                if Aabb::point(p).inflated(0.3).overlaps(&q) {
+                    assert!(found.contains(&i), "missed {i}");
+                }
+            }
+            // Leaves hold a few primitives: the query stays local.
+            assert!(found.len() < 200, "{} found", found.len());
+        }
+    }
+}

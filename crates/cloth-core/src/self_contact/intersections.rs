@@ -1,0 +1,108 @@
+//! Measures of the cloth against itself at one instant: the intersection count (edge-
+//! triangle pairs passing through each other) and the closest approach of a particle to a
+//! triangle, pairs sharing a particle (or seam partners) exempt. The count is zero for
+//! cloth that has never passed through itself.
+
+use super::bvh::{Aabb, Bvh};
+use super::geometry::{closest_on_triangle, segment_crosses_triangle};
+use super::topology::Topology;
+use crate::mesh::ClothMesh;
+use crate::Vec3;
+use rayon::prelude::*;
+
+/// How many edge-triangle pairs intersect, and the first (edge, triangle) of them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Intersections {
+    pub count: usize,
+    pub first: Option<(usize, usize)>,
+}
+
+/// The triangles' hierarchy at `x`.
+fn triangle_tree(topology: &Topology, x: &[Vec3]) -> Bvh {
+    let tris = &topology.triangles;
+    let centres: Vec<Vec3> = tris
+        .iter()
+        .map(|t| t.iter().map(|&i| x[i as usize]).sum::<Vec3>() / 3.0)
+        .collect();
+    let mut tree = Bvh::new(&centres);
+    tree.refit(|t| Aabb::of(tris[t].map(|i| x[i as usize])));
+    tree
+}
+
+pub(crate) fn count(topology: &Topology, x: &[Vec3]) -> Intersections {
+    let tris = &topology.triangles;
+    let tree = triangle_tree(topology, x);
+    (0..topology.edges.len())
+        .into_par_iter()
+        .map(|e| {
+            let [a, b] = topology.edges[e];
+            let (p, q) = (x[a as usize], x[b as usize]);
+            let mut found = Intersections::default();
+            tree.query(&Aabb::of([p, q]), |t| {
+                if topology.edge_triangle_exempt(e, t) {
+                    return;
+                }
+                if segment_crosses_triangle(&p, &q, &tris[t].map(|i| x[i as usize])) {
+                    found.count += 1;
+                    found.first = found.first.min(Some((e, t))).or(Some((e, t)));
+                }
+            });
+            found
+        })
+        .reduce(Intersections::default, |a, b| Intersections {
+            count: a.count + b.count,
+            first: match (a.first, b.first) {
+                (Some(x), Some(y)) => Some(x.min(y)),
+                (x, y) => x.or(y),
+            },
+        })
+}
+
+/// The intersecting edge-triangle pairs of `mesh` at positions `x`: pairs sharing a
+/// particle, or particles that `seams` join, or within `rest_radius` of each other in the
+/// flat cloth are exempt (as self-collision exempts them; see
+/// [`crate::Simulation::self_intersections`]).
+pub fn count_self_intersections(
+    mesh: &ClothMesh,
+    seams: &[[usize; 2]],
+    rest_radius: f64,
+    x: &[Vec3],
+) -> Intersections {
+    count(&Topology::new(mesh, seams, rest_radius), x)
+}
+
+/// The smallest distance of a particle from a triangle of the cloth, pairs sharing a
+/// particle (or seam partners) exempt, if one is under `within` (m).
+pub(crate) fn closest_approach(topology: &Topology, x: &[Vec3], within: f64) -> Option<f64> {
+    let tris = &topology.triangles;
+    let tree = triangle_tree(topology, x);
+    let closest = (0..topology.particles())
+        .into_par_iter()
+        .map(|p| {
+            let mut best = f64::INFINITY;
+            tree.query(&Aabb::point(&x[p]).inflated(within), |t| {
+                if topology.vertex_triangle_exempt(p, t) {
+                    return;
+                }
+                let [a, b, c] = tris[t].map(|i| x[i as usize]);
+                let w = closest_on_triangle(&x[p], &a, &b, &c);
+                best = best.min((x[p] - (w[0] * a + w[1] * b + w[2] * c)).norm());
+            });
+            best
+        })
+        .reduce(|| f64::INFINITY, f64::min);
+    (closest < within).then_some(closest)
+}
+
+/// The smallest distance of a particle of `mesh` at `x` from one of its triangles, if one
+/// is under `within` (m): how close layers of the cloth come. Pairs are exempt as for
+/// [`count_self_intersections`].
+pub fn closest_self_approach(
+    mesh: &ClothMesh,
+    seams: &[[usize; 2]],
+    rest_radius: f64,
+    x: &[Vec3],
+    within: f64,
+) -> Option<f64> {
+    closest_approach(&Topology::new(mesh, seams, rest_radius), x, within)
+}

@@ -1,0 +1,139 @@
+//! Proximity: the particle-triangle and edge-edge pairs of the cloth closer than their
+//! contact distance at the start of a step, or closing in fast enough to come that close
+//! within it, each a [`Contact`] the step's solve holds at the distance.
+
+use super::bvh::{Aabb, Bvh};
+use super::geometry::{closest_on_segments, closest_on_triangle};
+use super::topology::Topology;
+use crate::energy::repulsion::ContactFrame;
+use crate::Vec3;
+
+/// A pair of the cloth in contact with itself for one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    pub particles: [u32; 4],
+    pub frame: ContactFrame,
+    /// The distance the repulsion keeps between the two points, m.
+    pub distance: f64,
+    /// The gap at the start of the step, m.
+    pub gap: f64,
+    /// Coulomb coefficient between the two layers.
+    pub friction: f64,
+}
+
+impl Contact {
+    pub(crate) fn gather(&self, u: &[Vec3]) -> [Vec3; 4] {
+        self.particles.map(|i| u[i as usize])
+    }
+}
+
+/// A pair beyond its contact distance, but closing in to within this fraction of it
+/// beyond over the step at its present speed, is held at the distance in the step: it
+/// lands on the other layer and stays, rather than falling onto it, being caught by the
+/// impact passes and pushed off by the repulsion, step after step.
+pub const LANDING_MARGIN: f64 = 0.1;
+/// How far beyond its contact distance a pair is looked for, in contact distances.
+pub const LOOK_AHEAD: f64 = 1.0;
+
+/// What a proximity search needs of the cloth.
+pub(crate) struct Cloth<'a> {
+    pub topology: &'a Topology,
+    pub x: &'a [Vec3],
+    pub v: &'a [Vec3],
+    /// The step's length, or `None` for an explicit step (too short to look ahead).
+    pub h: Option<f64>,
+    pub pinned: &'a [bool],
+    /// Each particle's share of the contact distance (half its thickness) and its
+    /// Coulomb coefficient.
+    pub half_thickness: &'a [f64],
+    pub friction: &'a [f64],
+}
+
+impl Cloth<'_> {
+    /// The weighted mean of a per-particle value over a contact's two points (each
+    /// point's weights sum to one, so their absolute values sum to two).
+    fn mean(&self, values: &[f64], particles: &[u32; 4], weights: &[f64; 4]) -> f64 {
+        0.5 * (0..4)
+            .map(|k| weights[k].abs() * values[particles[k] as usize])
+            .sum::<f64>()
+    }
+
+    fn contact(&self, particles: [u32; 4], weights: [f64; 4]) -> Option<Contact> {
+        if particles.iter().all(|&i| self.pinned[i as usize]) {
+            return None;
+        }
+        let distance = 2.0 * self.mean(self.half_thickness, &particles, &weights);
+        let gap: Vec3 = (0..4).map(|k| weights[k] * self.x[particles[k] as usize]).sum();
+        let d = gap.norm();
+        if d >= (1.0 + LOOK_AHEAD) * distance {
+            return None;
+        }
+        // Touching to rounding, the direction between the points says nothing, and the pair
+        // is not two layers but one folded into itself (rows of a flat sheet collapsed into
+        // each other): it is no contact to hold apart.
+        if d <= 1e-9 * distance {
+            return None;
+        }
+        let normal = gap / d;
+        if d >= distance {
+            let Some(h) = self.h else {
+                return None;
+            };
+            let closing: f64 = (0..4)
+                .map(|k| weights[k] * normal.dot(&self.v[particles[k] as usize]))
+                .sum();
+            if d + h * closing.min(0.0) >= (1.0 + LANDING_MARGIN) * distance {
+                return None;
+            }
+        }
+        Some(Contact {
+            particles,
+            frame: ContactFrame { weights, normal },
+            distance,
+            gap: d,
+            friction: self.mean(self.friction, &particles, &weights),
+        })
+    }
+
+    /// Particle `p` against every triangle of `tree` (refitted to the triangles' boxes)
+    /// within `reach` (the largest distance a contact is looked for at).
+    pub fn particle_triangle(&self, p: usize, tree: &Bvh, reach: f64, found: &mut Vec<Contact>) {
+        let xp = self.x[p];
+        tree.query(&Aabb::point(&xp).inflated(reach), |t| {
+            if self.topology.vertex_triangle_exempt(p, t) {
+                return;
+            }
+            let tri = self.topology.triangles[t];
+            let [a, b, c] = tri.map(|i| self.x[i as usize]);
+            let w = closest_on_triangle(&xp, &a, &b, &c);
+            if !self.topology.owns_point(t, &w) {
+                return;
+            }
+            let particles = [p as u32, tri[0], tri[1], tri[2]];
+            let weights = [1.0, -w[0], -w[1], -w[2]];
+            found.extend(self.contact(particles, weights));
+        });
+    }
+
+    /// Edge `e` against every later edge of `tree` (refitted to the edges' boxes) within
+    /// `reach`, where the nearest points are inside both edges: a nearest point at an end
+    /// is a particle's, which its triangles' contacts have.
+    pub fn edge_edge(&self, e: usize, tree: &Bvh, reach: f64, found: &mut Vec<Contact>) {
+        let [i, j] = self.topology.edges[e];
+        let (p0, p1) = (self.x[i as usize], self.x[j as usize]);
+        tree.query(&Aabb::of([p0, p1]).inflated(reach), |f| {
+            if f <= e || self.topology.edge_edge_exempt(e, f) {
+                return;
+            }
+            let [k, l] = self.topology.edges[f];
+            let (q0, q1) = (self.x[k as usize], self.x[l as usize]);
+            let (s, t) = closest_on_segments(&p0, &p1, &q0, &q1);
+            if !(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0) {
+                return;
+            }
+            let particles = [i, j, k, l];
+            let weights = [1.0 - s, s, t - 1.0, -t];
+            found.extend(self.contact(particles, weights));
+        });
+    }
+}

@@ -1,0 +1,452 @@
+//! The end-of-step impact passes: every pair that passed through each other is put back
+//! on its side and loses its approach speed; pairs still crossing after
+//! [`super::IMPULSE_PASSES`] become impact zones that move as one.
+
+use super::bvh::Aabb;
+use super::ccd::{self, Impact, Paths};
+use super::{item_kind, Item, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
+use crate::Vec3;
+
+/// What the impact passes did in one step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct ImpactCounts {
+    /// Impacts answered by impulses.
+    pub impacts: usize,
+    /// Particles moved as part of an impact zone.
+    pub zone_particles: usize,
+    /// Particles stopped where they started the step, the last resort.
+    pub frozen: usize,
+    /// Impacts left that nothing could stop (particles moved by their pins).
+    pub unresolved: usize,
+}
+
+/// A zone's sums: mass and mass-weighted displacement of its free members, and count and
+/// summed displacement of the members that do not yield (pinned, or held by a body).
+#[derive(Debug, Clone, Copy, Default)]
+struct ZoneSum {
+    mass: f64,
+    moment: Vec3,
+    held: usize,
+    held_motion: Vec3,
+}
+
+#[derive(Debug, Clone)]
+pub(super) struct Scratch {
+    dirty: Vec<bool>,
+    items: Vec<u32>,
+    triangle_marked: Vec<bool>,
+    edge_marked: Vec<bool>,
+    impacts: Vec<Impact>,
+    zone: Vec<u32>,
+    zoned: Vec<u32>,
+    in_zone: Vec<bool>,
+    sums: Vec<ZoneSum>,
+    /// How far the passes moved each particle this step, and the particles they moved.
+    shift: Vec<f64>,
+    pub shifted: Vec<u32>,
+    frozen: Vec<bool>,
+    frozen_list: Vec<u32>,
+}
+
+impl Scratch {
+    pub fn new(n: usize, triangles: usize, edges: usize) -> Self {
+        Self {
+            dirty: vec![false; n],
+            items: Vec::new(),
+            triangle_marked: vec![false; triangles],
+            edge_marked: vec![false; edges],
+            impacts: Vec::new(),
+            zone: Vec::new(),
+            zoned: Vec::new(),
+            in_zone: vec![false; n],
+            sums: Vec::new(),
+            shift: vec![0.0; n],
+            shifted: Vec::new(),
+            frozen: vec![false; n],
+            frozen_list: Vec::new(),
+        }
+    }
+}
+
+impl SelfContacts {
+    /// Resolves the pairs that pass through each other on the straight paths from `x0`
+    /// to `x1` (the step's end, changed in place with the velocities `v1`). Pinned
+    /// particles do not yield to impacts; particles a body holds (`support`, the body's
+    /// outward normal, zero for the rest) do not yield into it.
+    #[allow(clippy::too_many_arguments)]
+    pub fn resolve(
+        &mut self,
+        x0: &[Vec3],
+        x1: &mut [Vec3],
+        v1: &mut [Vec3],
+        masses: &[f64],
+        pinned: &[bool],
+        support: &[Vec3],
+        h: f64,
+        parallel: bool,
+    ) -> ImpactCounts {
+        let mut counts = ImpactCounts::default();
+        for &i in &self.response.shifted {
+            self.response.shift[i as usize] = 0.0;
+        }
+        self.response.shifted.clear();
+        self.response.dirty.fill(true);
+        for pass in 0.. {
+            // Pairs ending too close are put right by impulses only; zones and the last
+            // resort are for pairs passing through each other.
+            let impulses = pass < IMPULSE_PASSES;
+            self.find_impacts(x0, x1, pass == 0, impulses, parallel);
+            let impacts = std::mem::take(&mut self.response.impacts);
+            let sc = &mut self.response;
+            sc.dirty.fill(false);
+            if impacts.is_empty() {
+                self.response.impacts = impacts;
+                break;
+            }
+            for c in &impacts {
+                for (k, &p) in c.particles.iter().enumerate() {
+                    if c.weights[k] != 0.0 {
+                        sc.dirty[p as usize] = true;
+                    }
+                }
+            }
+            if impulses {
+                for c in &impacts {
+                    self.impulse(c, x1, v1, masses, pinned, support);
+                }
+                counts.impacts += impacts.len();
+            } else if pass < IMPULSE_PASSES + ZONE_PASSES {
+                counts.zone_particles = self.move_zones(&impacts, x0, x1, v1, masses, pinned, support, h);
+            } else if self.freeze(&impacts, x0, x1, v1, pinned) == 0 {
+                // Nothing left to stop: what crosses now is the pins' doing.
+                counts.unresolved = impacts.len();
+                self.response.impacts = impacts;
+                break;
+            }
+            self.response.impacts = impacts;
+            self.response.impacts.clear();
+        }
+        let sc = &mut self.response;
+        for &i in &sc.zoned {
+            sc.in_zone[i as usize] = false;
+        }
+        sc.zoned.clear();
+        for &i in &sc.frozen_list {
+            sc.frozen[i as usize] = false;
+        }
+        counts.frozen = sc.frozen_list.len();
+        sc.frozen_list.clear();
+        counts
+    }
+
+    /// The last resort, for impacts the zones did not end: their particles stay where
+    /// they started the step, at rest. The start had nothing passing through itself, so
+    /// freezing more and more of the cloth ends with nothing crossing. Returns how many
+    /// particles it froze now.
+    fn freeze(
+        &mut self,
+        impacts: &[Impact],
+        x0: &[Vec3],
+        x1: &mut [Vec3],
+        v1: &mut [Vec3],
+        pinned: &[bool],
+    ) -> usize {
+        let mut count = 0;
+        for c in impacts {
+            for k in 0..4 {
+                let i = c.particles[k] as usize;
+                if c.weights[k] == 0.0 || pinned[i] || self.response.frozen[i] {
+                    continue;
+                }
+                self.response.frozen[i] = true;
+                self.response.frozen_list.push(i as u32);
+                self.note_shift(i, (x1[i] - x0[i]).norm());
+                x1[i] = x0[i];
+                v1[i] = Vec3::zeros();
+                count += 1;
+            }
+        }
+        count
+    }
+
+    /// The impacts on the paths from `x0` to `x1`: of every primitive (`full`), or of
+    /// those with a dirty particle; with `closing`, pairs ending too close too.
+    fn find_impacts(&mut self, x0: &[Vec3], x1: &[Vec3], full: bool, closing: bool, parallel: bool) {
+        let topo = &self.topology;
+        let swept = |i: u32| Aabb::of([x0[i as usize], x1[i as usize]]);
+        let over = |ids: &[u32]| ids.iter().fold(Aabb::empty(), |b, &i| b.union(&swept(i)));
+        self.vertex_tree.refit(|i| swept(i as u32));
+        self.triangle_tree.refit(|t| over(&topo.triangles[t]));
+        self.edge_tree.refit(|e| over(&topo.edges[e]));
+
+        let sc = &mut self.response;
+        let n = topo.particles();
+        let t_count = topo.triangles.len();
+        sc.items.clear();
+        if full {
+            sc.items.extend_from_slice(&self.all_items);
+        } else {
+            for i in 0..n {
+                if !sc.dirty[i] {
+                    continue;
+                }
+                sc.items.push(i as u32);
+                for &t in topo.triangles_of(i) {
+                    if !std::mem::replace(&mut sc.triangle_marked[t as usize], true) {
+                        sc.items.push((n + t as usize) as u32);
+                    }
+                }
+                for &e in topo.edges_of(i) {
+                    if !std::mem::replace(&mut sc.edge_marked[e as usize], true) {
+                        sc.items.push((n + t_count + e as usize) as u32);
+                    }
+                }
+            }
+            for &item in &sc.items {
+                let item = item as usize;
+                if item >= n + t_count {
+                    sc.edge_marked[item - n - t_count] = false;
+                } else if item >= n {
+                    sc.triangle_marked[item - n] = false;
+                }
+            }
+        }
+
+        let (vertex_tree, triangle_tree, edge_tree) =
+            (&self.vertex_tree, &self.triangle_tree, &self.edge_tree);
+        let dirty = &sc.dirty;
+        let touch = self.touch;
+        // Near enough to cross, or to end the step too close.
+        let pad = if closing {
+            touch.max(ccd::MIN_SEPARATION * self.reach)
+        } else {
+            touch
+        };
+        let half = &self.half_thickness;
+        let distance =
+            |p: [u32; 4]| move |w: &[f64; 4]| (0..4).map(|k| w[k].abs() * half[p[k] as usize]).sum::<f64>();
+        let paths = |p: [u32; 4]| Paths {
+            start: p.map(|i| x0[i as usize]),
+            end: p.map(|i| x1[i as usize]),
+        };
+        let search = |item: usize, found: &mut Vec<Impact>| match item_kind(item, n, t_count) {
+            Item::Particle(i) => {
+                triangle_tree.query(&swept(i as u32).inflated(pad), |t| {
+                    if topo.vertex_triangle_exempt(i, t) {
+                        return;
+                    }
+                    let tri = topo.triangles[t];
+                    let p = [i as u32, tri[0], tri[1], tri[2]];
+                    found.extend(ccd::particle_triangle(
+                        p,
+                        &paths(p),
+                        touch,
+                        closing.then(|| distance(p)),
+                    ));
+                });
+            }
+            Item::Triangle(t) => {
+                let tri = topo.triangles[t];
+                vertex_tree.query(&over(&tri).inflated(pad), |i| {
+                    // A dirty particle tests itself against every triangle.
+                    if dirty[i] || topo.vertex_triangle_exempt(i, t) {
+                        return;
+                    }
+                    let p = [i as u32, tri[0], tri[1], tri[2]];
+                    found.extend(ccd::particle_triangle(
+                        p,
+                        &paths(p),
+                        touch,
+                        closing.then(|| distance(p)),
+                    ));
+                });
+            }
+            Item::Edge(e) => {
+                let edge = topo.edges[e];
+                edge_tree.query(&over(&edge).inflated(pad), |f| {
+                    let other = topo.edges[f];
+                    let other_dirty = dirty[other[0] as usize] || dirty[other[1] as usize];
+                    // Two dirty edges: the lower one tests the pair.
+                    if f == e || (other_dirty && f < e) || topo.edge_edge_exempt(e, f) {
+                        return;
+                    }
+                    let p = [edge[0], edge[1], other[0], other[1]];
+                    found.extend(ccd::edge_edge(p, &paths(p), touch, closing.then(|| distance(p))));
+                });
+            }
+        };
+        self.impact_search
+            .run(&sc.items, parallel, &mut sc.impacts, search);
+    }
+
+    /// One impact's inelastic impulse: the pair is moved back along the normal to its
+    /// target gap and its approach along the normal stopped, with Coulomb friction on the
+    /// impulse.
+    fn impulse(
+        &mut self,
+        c: &Impact,
+        x1: &mut [Vec3],
+        v1: &mut [Vec3],
+        masses: &[f64],
+        pinned: &[bool],
+        support: &[Vec3],
+    ) {
+        let (w, p, n) = (c.weights, c.particles.map(|i| i as usize), c.normal);
+        // Each particle moves along `w n`: a pinned one not at all, one a body holds not
+        // into the body.
+        let inv_mass: [f64; 4] = std::array::from_fn(|k| {
+            let i = p[k];
+            if pinned[i] || w[k] * n.dot(&support[i]) < 0.0 {
+                0.0
+            } else {
+                1.0 / masses[i]
+            }
+        });
+        let denom: f64 = (0..4).map(|k| w[k] * w[k] * inv_mass[k]).sum();
+        if denom <= 0.0 {
+            return;
+        }
+        // The least change of the particles that closes the gap moves each by `w im / denom`
+        // times the gap's change: more than the whole change where the pair's only free
+        // particle has a small weight (a triangle held by a body at two corners, hit near
+        // them), which would fling it. No particle is moved more than the gap is; what that
+        // leaves undone is found again and falls to an impact zone.
+        let lever = (0..4).map(|k| w[k].abs() * inv_mass[k]).fold(0.0, f64::max) / denom;
+        let denom = denom * lever.max(1.0);
+        let relative = |u: &[Vec3]| (0..4).map(|k| w[k] * u[p[k]]).sum::<Vec3>();
+        let short = c.target - n.dot(&relative(x1));
+        if short > 0.0 {
+            let lambda = short / denom;
+            for k in 0..4 {
+                let dx = (lambda * w[k] * inv_mass[k]) * n;
+                x1[p[k]] += dx;
+                self.note_shift(p[k], dx.norm());
+            }
+        }
+        let mean = |values: &[f64]| 0.5 * (0..4).map(|k| w[k].abs() * values[p[k]]).sum::<f64>();
+        let u = relative(v1);
+        let approach = -u.dot(&n);
+        if approach > 0.0 {
+            let sliding = u + approach * n;
+            let speed = sliding.norm();
+            let cut = if speed > 0.0 {
+                (mean(&self.friction) * approach / speed).min(1.0)
+            } else {
+                0.0
+            };
+            let change = approach * n - cut * sliding;
+            for k in 0..4 {
+                v1[p[k]] += (w[k] * inv_mass[k] / denom) * change;
+            }
+        }
+    }
+
+    fn note_shift(&mut self, i: usize, d: f64) {
+        let sc = &mut self.response;
+        if d > 0.0 && sc.shift[i] == 0.0 {
+            sc.shifted.push(i as u32);
+        }
+        sc.shift[i] += d;
+    }
+
+    /// Merges the particles of `impacts` into impact zones (with the zones they were in)
+    /// and moves every zone as one, by its free members' mass-weighted displacement, or
+    /// if it has members that do not yield, by theirs. Returns the particles in zones.
+    #[allow(clippy::too_many_arguments)]
+    fn move_zones(
+        &mut self,
+        impacts: &[Impact],
+        x0: &[Vec3],
+        x1: &mut [Vec3],
+        v1: &mut [Vec3],
+        masses: &[f64],
+        pinned: &[bool],
+        support: &[Vec3],
+        h: f64,
+    ) -> usize {
+        let n = self.topology.particles();
+        let sc = &mut self.response;
+        if sc.zoned.is_empty() {
+            sc.zone.clear();
+            sc.zone.extend(0..n as u32);
+            sc.sums.resize(n, ZoneSum::default());
+        }
+        fn find(zone: &mut [u32], mut i: u32) -> u32 {
+            while zone[i as usize] != i {
+                let up = zone[zone[i as usize] as usize];
+                zone[i as usize] = up;
+                i = up;
+            }
+            i
+        }
+        for c in impacts {
+            let members = (0..4).filter(|&k| c.weights[k] != 0.0).map(|k| c.particles[k]);
+            let mut root = None;
+            for i in members {
+                if !std::mem::replace(&mut sc.in_zone[i as usize], true) {
+                    sc.zoned.push(i);
+                }
+                let r = find(&mut sc.zone, i);
+                match root {
+                    None => root = Some(r),
+                    Some(q) if q != r => {
+                        let (lo, hi) = (q.min(r), q.max(r));
+                        sc.zone[hi as usize] = lo;
+                        root = Some(lo);
+                    }
+                    _ => {}
+                }
+            }
+        }
+        for k in 0..sc.zoned.len() {
+            let r = find(&mut sc.zone, sc.zoned[k]) as usize;
+            sc.sums[r] = ZoneSum::default();
+        }
+        for k in 0..sc.zoned.len() {
+            let i = sc.zoned[k] as usize;
+            let r = find(&mut sc.zone, i as u32) as usize;
+            let dx = x1[i] - x0[i];
+            let s = &mut sc.sums[r];
+            if !pinned[i] && support[i] == Vec3::zeros() {
+                let m = masses[i];
+                s.mass += m;
+                s.moment += m * dx;
+            } else {
+                s.held += 1;
+                s.held_motion += dx;
+            }
+        }
+        for k in 0..sc.zoned.len() {
+            let i = sc.zoned[k] as usize;
+            if pinned[i] {
+                continue;
+            }
+            let r = find(&mut sc.zone, i as u32) as usize;
+            let s = sc.sums[r];
+            let d = if s.held > 0 {
+                s.held_motion / s.held as f64
+            } else {
+                s.moment / s.mass
+            };
+            let old = x1[i];
+            x1[i] = x0[i] + d;
+            v1[i] = d / h;
+            sc.dirty[i] = true;
+            let moved = (x1[i] - old).norm();
+            if moved > 0.0 && sc.shift[i] == 0.0 {
+                sc.shifted.push(i as u32);
+            }
+            sc.shift[i] += moved;
+        }
+        sc.zoned.len()
+    }
+
+    /// The particles the last [`SelfContacts::resolve`] moved, with how far (summed over
+    /// its passes).
+    pub fn shifted(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.response
+            .shifted
+            .iter()
+            .map(|&i| (i as usize, self.response.shift[i as usize]))
+    }
+}

@@ -1,0 +1,363 @@
+//! The cloth's primitives for self-collision, which of their pairs are exempt, and which
+//! triangle speaks for each edge and vertex so a particle near one gets one contact, not
+//! one per triangle around it.
+//!
+//! A pair is exempt when its primitives share a particle or have neighbouring particles
+//! (particles a seam will join counting as one), or when they lie within the rest radius
+//! of each other in the flat cloth. Such pairs are near for good: neighbours' primitives
+//! touch whenever a row of cells is pressed flat in its own plane (which is the membrane's
+//! to resist, not a fold), and on a mesh finer than a few thicknesses, pairs within the
+//! radius would be in contact unfolded. Cloth cannot fold through itself over less than
+//! its own thickness, nor within one cell without folding its cells flat.
+
+use super::geometry::{closest_on_segments, closest_on_triangle, segment_crosses_triangle};
+use crate::mesh::ClothMesh;
+use crate::Vec3;
+use nalgebra::Vector2;
+
+/// Bit of [`Topology::owns`] for vertex `k` of a triangle.
+const OWNS_VERTEX: u8 = 1;
+/// Bit for the edge opposite vertex `k`.
+const OWNS_EDGE: u8 = 8;
+
+#[derive(Debug, Clone)]
+pub(crate) struct Topology {
+    pub triangles: Vec<[u32; 3]>,
+    pub edges: Vec<[u32; 2]>,
+    /// Each particle's representative: the particles a seam pulls together are one.
+    rep: Vec<u32>,
+    /// The representatives joined by an edge to each representative, sorted, in
+    /// compressed rows.
+    neighbours: (Vec<u32>, Vec<u32>),
+    /// Per triangle, `OWNS_VERTEX << k` when it is the first triangle of vertex `k`, and
+    /// `OWNS_EDGE << k` when it is the first of the edge opposite vertex `k`.
+    owns: Vec<u8>,
+    /// The triangles and the edges of each particle, in compressed rows.
+    vertex_triangles: (Vec<u32>, Vec<u32>),
+    vertex_edges: (Vec<u32>, Vec<u32>),
+    /// Material coordinates of each triangle's corners, and its chart: triangles joined
+    /// across edges whose corners agree in material coordinates share one (a panel; a
+    /// welded seam parts two).
+    corner_uv: Vec<[Vector2<f64>; 3]>,
+    chart: Vec<u32>,
+    /// Pairs this near in the flat cloth are exempt, m.
+    rest_radius: f64,
+}
+
+/// The root of `i` in a union-find forest, halving the path.
+fn find(parent: &mut [u32], mut i: u32) -> u32 {
+    while parent[i as usize] != i {
+        let up = parent[parent[i as usize] as usize];
+        parent[i as usize] = up;
+        i = up;
+    }
+    i
+}
+
+/// Compressed rows of `items` listed under each of their particles.
+fn incidence<const N: usize>(n: usize, items: &[[u32; N]]) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; n + 1];
+    for item in items {
+        for &v in item {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut cursor = start.clone();
+    let mut list = vec![0u32; start[n] as usize];
+    for (k, item) in items.iter().enumerate() {
+        for &v in item {
+            list[cursor[v as usize] as usize] = k as u32;
+            cursor[v as usize] += 1;
+        }
+    }
+    (start, list)
+}
+
+fn row(csr: &(Vec<u32>, Vec<u32>), i: usize) -> &[u32] {
+    &csr.1[csr.0[i] as usize..csr.0[i + 1] as usize]
+}
+
+impl Topology {
+    /// The topology of `mesh`, with each pair of `seams` counting as one particle and
+    /// pairs within `rest_radius` of each other in the flat cloth exempt.
+    pub fn new(mesh: &ClothMesh, seams: &[[usize; 2]], rest_radius: f64) -> Self {
+        let n = mesh.vertex_count();
+        let mut parent: Vec<u32> = (0..n as u32).collect();
+        for &[a, b] in seams {
+            let (ra, rb) = (find(&mut parent, a as u32), find(&mut parent, b as u32));
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+        let rep: Vec<u32> = (0..n as u32).map(|i| find(&mut parent, i)).collect();
+
+        let triangles: Vec<[u32; 3]> = mesh.triangles().iter().map(|t| t.map(|i| i as u32)).collect();
+        let edges: Vec<[u32; 2]> = mesh.edges().iter().map(|e| e.map(|i| i as u32)).collect();
+        let rep_edges: Vec<[u32; 2]> = edges
+            .iter()
+            .map(|e| e.map(|i| rep[i as usize]))
+            .filter(|[a, b]| a != b)
+            .collect();
+        let (start, mut list) = incidence(n, &rep_edges);
+        // Each row lists the edges; turn them into the other ends, sorted.
+        for r in 0..n {
+            let row = &mut list[start[r] as usize..start[r + 1] as usize];
+            for e in row.iter_mut() {
+                let [a, b] = rep_edges[*e as usize];
+                *e = if a as usize == r { b } else { a };
+            }
+            row.sort_unstable();
+        }
+        let neighbours = (start, list);
+        let vertex_triangles = incidence(n, &triangles);
+        let vertex_edges = incidence(n, &edges);
+        let owns = triangles
+            .iter()
+            .enumerate()
+            .map(|(t, tri)| {
+                let mut bits = 0;
+                for k in 0..3 {
+                    if row(&vertex_triangles, tri[k] as usize)[0] as usize == t {
+                        bits |= OWNS_VERTEX << k;
+                    }
+                    let (a, b) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                    let first = row(&vertex_triangles, a as usize)
+                        .iter()
+                        .find(|&&s| triangles[s as usize].contains(&b));
+                    if first == Some(&(t as u32)) {
+                        bits |= OWNS_EDGE << k;
+                    }
+                }
+                bits
+            })
+            .collect();
+        let corner_uv: Vec<_> = (0..triangles.len()).map(|t| mesh.corner_uv(t)).collect();
+        let mut chart: Vec<u32> = (0..triangles.len() as u32).collect();
+        for h in mesh.hinges() {
+            let [s, t] = h.triangles;
+            let uv = |t: usize, i: usize| {
+                let k = mesh.triangles()[t]
+                    .iter()
+                    .position(|&v| v == i)
+                    .expect("on the edge");
+                corner_uv[t][k]
+            };
+            if h.edge.iter().all(|&i| uv(s, i) == uv(t, i)) {
+                let (a, b) = (find(&mut chart, s as u32), find(&mut chart, t as u32));
+                chart[a.max(b) as usize] = a.min(b);
+            }
+        }
+        let chart = (0..triangles.len() as u32).map(|t| find(&mut chart, t)).collect();
+        Self {
+            triangles,
+            edges,
+            rep,
+            neighbours,
+            owns,
+            vertex_triangles,
+            vertex_edges,
+            corner_uv,
+            chart,
+            rest_radius,
+        }
+    }
+
+    /// The material coordinates of particle `i` in triangle `t` (one of its own), as a
+    /// point of the plane z = 0.
+    fn material(&self, t: usize, i: u32) -> Vec3 {
+        let k = self.triangles[t].iter().position(|&v| v == i).unwrap_or(0);
+        self.corner_uv[t][k].push(0.0)
+    }
+
+    fn material_triangle(&self, t: usize) -> [Vec3; 3] {
+        self.corner_uv[t].map(|p| p.push(0.0))
+    }
+
+    /// The triangles of edge `e`.
+    fn edge_triangles(&self, e: usize) -> impl Iterator<Item = usize> + '_ {
+        let [a, b] = self.edges[e];
+        self.triangles_of(a as usize)
+            .iter()
+            .map(|&t| t as usize)
+            .filter(move |&t| self.triangles[t].contains(&b))
+    }
+
+    /// Edge `e`'s ends in the material coordinates of its triangle `t`.
+    fn material_edge(&self, t: usize, e: usize) -> [Vec3; 2] {
+        self.edges[e].map(|i| self.material(t, i))
+    }
+
+    pub fn particles(&self) -> usize {
+        self.rep.len()
+    }
+
+    /// Whether particles `i` and `j` are one, or neighbours (seam partners counting as one).
+    fn near_in_mesh(&self, i: u32, j: u32) -> bool {
+        let (a, b) = (self.rep[i as usize], self.rep[j as usize]);
+        a == b || row(&self.neighbours, a as usize).binary_search(&b).is_ok()
+    }
+
+    /// Particle `p` and triangle `t` are never in contact (see the module's introduction).
+    pub fn vertex_triangle_exempt(&self, p: usize, t: usize) -> bool {
+        if self.triangles[t].iter().any(|&i| self.near_in_mesh(p as u32, i)) {
+            return true;
+        }
+        let [a, b, c] = self.material_triangle(t);
+        self.triangles_of(p).iter().any(|&s| {
+            let s = s as usize;
+            self.chart[s] == self.chart[t] && {
+                let q = self.material(s, p as u32);
+                let w = closest_on_triangle(&q, &a, &b, &c);
+                (q - (w[0] * a + w[1] * b + w[2] * c)).norm() < self.rest_radius
+            }
+        })
+    }
+
+    /// Edges `e` and `f` are never in contact (as for a particle and a triangle).
+    pub fn edge_edge_exempt(&self, e: usize, f: usize) -> bool {
+        if self.edges[e]
+            .iter()
+            .any(|&i| self.edges[f].iter().any(|&j| self.near_in_mesh(i, j)))
+        {
+            return true;
+        }
+        self.edge_triangles(e).any(|s| {
+            self.edge_triangles(f).any(|t| {
+                self.chart[s] == self.chart[t] && {
+                    let [p0, p1] = self.material_edge(s, e);
+                    let [q0, q1] = self.material_edge(t, f);
+                    let (u, v) = closest_on_segments(&p0, &p1, &q0, &q1);
+                    (p0 + u * (p1 - p0) - q0 - v * (q1 - q0)).norm() < self.rest_radius
+                }
+            })
+        })
+    }
+
+    /// Edge `e` and triangle `t` are never counted as intersecting (as for a particle and a
+    /// triangle).
+    pub fn edge_triangle_exempt(&self, e: usize, t: usize) -> bool {
+        if self.edges[e]
+            .iter()
+            .any(|&i| self.triangles[t].iter().any(|&j| self.near_in_mesh(i, j)))
+        {
+            return true;
+        }
+        let tri = self.material_triangle(t);
+        self.edge_triangles(e).any(|s| {
+            self.chart[s] == self.chart[t] && {
+                let [p, q] = self.material_edge(s, e);
+                material_distance(&p, &q, &tri) < self.rest_radius
+            }
+        })
+    }
+
+    /// Whether triangle `t` speaks for the nearest point at barycentric `weights`: always
+    /// inside the face; on an edge or at a vertex, only the first triangle having it.
+    pub fn owns_point(&self, t: usize, weights: &[f64; 3]) -> bool {
+        let zeros = weights.iter().filter(|&&w| w == 0.0).count();
+        let bits = self.owns[t];
+        match zeros {
+            0 => true,
+            1 => {
+                let k = weights.iter().position(|&w| w == 0.0).expect("one zero");
+                bits & (OWNS_EDGE << k) != 0
+            }
+            _ => {
+                let k = weights.iter().position(|&w| w != 0.0).unwrap_or(0);
+                bits & (OWNS_VERTEX << k) != 0
+            }
+        }
+    }
+
+    pub fn triangles_of(&self, i: usize) -> &[u32] {
+        row(&self.vertex_triangles, i)
+    }
+    pub fn edges_of(&self, i: usize) -> &[u32] {
+        row(&self.vertex_edges, i)
+    }
+}
+
+/// The distance between segment `p q` and triangle `t`, all in the plane z = 0.
+fn material_distance(p: &Vec3, q: &Vec3, t: &[Vec3; 3]) -> f64 {
+    let through = |p: &Vec3, q: &Vec3| {
+        let up = Vec3::z();
+        // The segment meets the flat triangle if one of its points does: test each end,
+        // and the segment against each edge.
+        let inside = |x: &Vec3| segment_crosses_triangle(&(x + up), &(x - up), t);
+        inside(p) || inside(q)
+    };
+    if through(p, q) {
+        return 0.0;
+    }
+    let to_triangle = |x: &Vec3| {
+        let w = closest_on_triangle(x, &t[0], &t[1], &t[2]);
+        (x - (w[0] * t[0] + w[1] * t[1] + w[2] * t[2])).norm()
+    };
+    let to_edge = |a: &Vec3, b: &Vec3| {
+        let (u, v) = closest_on_segments(p, q, a, b);
+        (p + u * (q - p) - a - v * (b - a)).norm()
+    };
+    to_triangle(p)
+        .min(to_triangle(q))
+        .min(to_edge(&t[0], &t[1]))
+        .min(to_edge(&t[1], &t[2]))
+        .min(to_edge(&t[2], &t[0]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::GridBuilder;
+
+    #[test]
+    fn each_edge_and_vertex_has_one_owner_and_seams_exempt_their_neighbours() {
+        let mesh = GridBuilder::new(4, 3).size(0.3, 0.2).build().unwrap();
+        let topo = Topology::new(&mesh, &[[0, 11]], 1e-3);
+        for (i, _) in mesh.positions().iter().enumerate() {
+            let owners = topo
+                .triangles_of(i)
+                .iter()
+                .filter(|&&t| {
+                    let k = topo.triangles[t as usize]
+                        .iter()
+                        .position(|&v| v as usize == i)
+                        .unwrap();
+                    topo.owns[t as usize] & (OWNS_VERTEX << k) != 0
+                })
+                .count();
+            assert_eq!(owners, 1, "vertex {i}");
+        }
+        for e in &topo.edges {
+            let owners = topo
+                .triangles_of(e[0] as usize)
+                .iter()
+                .filter(|&&t| {
+                    let tri = topo.triangles[t as usize];
+                    (0..3).any(|k| {
+                        !(tri[k] == e[0] || tri[k] == e[1])
+                            && tri.contains(&e[0])
+                            && tri.contains(&e[1])
+                            && topo.owns[t as usize] & (OWNS_EDGE << k) != 0
+                    })
+                })
+                .count();
+            assert_eq!(owners, 1, "edge {e:?}");
+        }
+        // Particles 0 and 11 (opposite corners) are sewn: 0 is exempt from 11's triangles and
+        // from those of 11's neighbours, but not from a triangle farther away.
+        let t11 = topo.triangles_of(11)[0] as usize;
+        assert!(topo.vertex_triangle_exempt(0, t11));
+        let t7 = topo
+            .triangles_of(7)
+            .iter()
+            .find(|&&t| !topo.triangles[t as usize].contains(&11));
+        assert!(topo.vertex_triangle_exempt(0, *t7.unwrap() as usize));
+        // Particle 4 (second row, first column) and the triangle of 6, 10, 11? Far: not exempt
+        // unless they touch 4's neighbours.
+        for t in 0..topo.triangles.len() {
+            let near = topo.triangles[t].iter().any(|&i| topo.near_in_mesh(4, i));
+            assert_eq!(topo.vertex_triangle_exempt(4, t), near, "triangle {t}");
+        }
+    }
+}
