@@ -61,9 +61,13 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
         return Err("the dress scene is not a garment".into());
     };
     let bodies = prepared.bodies;
-    let sewn = sew(&garment, &fabrics, bodies.clone(), &scene.sewing, |_, _, _| {
-        ControlFlow::Continue(())
-    })
+    let sewn = sew(
+        &garment,
+        &fabrics,
+        bodies.clone(),
+        &scene.sewing_settings(),
+        |_, _, _| ControlFlow::Continue(()),
+    )
     .map_err(|x| e(&x))?;
     let sim = drape_simulation(&sewn, bodies, SolverSettings::default(), 0.0).map_err(|x| e(&x))?;
     results.push(time_steps("dress_drape", sim, steps)?);

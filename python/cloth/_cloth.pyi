@@ -274,14 +274,16 @@ class Garment:
         fabric: Fabric | Sequence[Fabric],
         *,
         settings: Mapping[str, Any] | None = None,
+        self_collision: bool | Mapping[str, Any] | None = None,
         callback: _Callback | None = None,
         every: int = 1,
     ) -> SewnGarment:
         """The source's second stage: gravity off, the seams pulled closed and welded.
         ``fabric`` is one fabric for every panel (panels that name a preset get theirs) or
-        one per panel. ``settings`` are a scene's ``[sewing]`` keys. ``callback`` sees a
-        :class:`Snapshot` every ``every`` steps; returning ``False`` stops the sewing
-        (``SimulationError``). Seams that will not close raise ``SimulationError``."""
+        one per panel. ``settings`` are a scene's ``[sewing]`` keys; ``self_collision`` as
+        for :class:`Simulation`. ``callback`` sees a :class:`Snapshot` every ``every``
+        steps; returning ``False`` stops the sewing (``SimulationError``). Seams that will
+        not close raise ``SimulationError``."""
 
 @final
 class SewnGarment:
@@ -298,11 +300,12 @@ class SewnGarment:
         bodies: Sequence[Body],
         *,
         settings: Mapping[str, Any] | None = None,
+        self_collision: bool | Mapping[str, Any] | None = None,
         callback: _Callback | None = None,
         every: int = 1,
     ) -> Draped:
         """The source's third stage: gravity on, until at rest (``settings`` are a scene's
-        ``[drape]`` keys)."""
+        ``[drape]`` keys; ``self_collision`` as for :class:`Simulation`)."""
 
 @final
 class Draped:
@@ -336,6 +339,12 @@ class StepStats:
     feature_contacts: int
     feature_corrections: int
     contact_seconds: float
+    self_contacts: int
+    self_impacts: int
+    self_zone_particles: int
+    self_frozen: int
+    self_unresolved: int
+    self_collision_seconds: float
     def to_dict(self) -> dict[str, Any]: ...
 
 @final
@@ -375,8 +384,10 @@ class Simulation:
     ``pins`` are particle numbers held where they start (or at ``pin_positions``,
     ``(K, 3)``); ``settings`` are a scene's ``[solver]`` keys (``integrator``,
     ``time_step``, ``gravity``, ``wind``, ``pcg``, ``max_speed``, ``max_kinetic_energy``,
-    ``parallel``). Stepping releases the GIL; a divergence raises
-    :class:`SimulationError` and keeps the last good state.
+    ``parallel``); ``self_collision`` is ``True`` (the default), ``False``, or a scene's
+    ``[self_collision]`` keys (``enabled``, ``thickness``, ``friction``, ``stiffness``).
+    Stepping releases the GIL; a divergence raises :class:`SimulationError` and keeps the
+    last good state.
     """
 
     def __init__(
@@ -389,6 +400,7 @@ class Simulation:
         pin_positions: _Points | None = None,
         settings: Mapping[str, Any] | None = None,
         velocities: _Points | None = None,
+        self_collision: bool | Mapping[str, Any] | None = None,
     ) -> None: ...
     def step(self, n: int = 1) -> StepStats:
         """Takes ``n`` steps; returns the last one's statistics."""
@@ -443,6 +455,14 @@ class Simulation:
         particles along the warp and along the weft, %; ``None`` if not a grid."""
     def deepest_penetration(self) -> float:
         """How deep the deepest particle is inside a body, m (0 if none is)."""
+    def self_intersections(self) -> int:
+        """How many edge-triangle pairs of the cloth pass through each other now (pairs
+        sharing or neighbouring particles, or near in the flat cloth, exempt)."""
+    def body_intersections(self) -> int:
+        """How many cloth edges pass through a body triangle now, counted the same way."""
+    def closest_self_approach(self, within: float) -> float | None:
+        """The smallest distance of a particle from a triangle of the cloth (exempt pairs
+        aside), m, if one is under ``within``: how close the layers come."""
 
 def strain(mesh: ClothMesh, positions: _Points) -> Strain:
     """Warp and weft strain of ``mesh`` at ``positions``."""

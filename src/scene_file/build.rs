@@ -56,7 +56,7 @@ impl SceneFile {
             file: file.into(),
             source,
         };
-        self.solver.validate().map_err(param)?;
+        self.solver_settings().validate().map_err(param)?;
         self.rest.validate().map_err(param)?;
         self.sewing.validate().map_err(param)?;
         self.drape.validate().map_err(param)?;
@@ -215,7 +215,7 @@ fn sheet(
     bodies: &Arc<Bodies>,
     test: Option<SheetTest>,
 ) -> PreparedCloth {
-    let builder = builder.settings(scene.solver.clone());
+    let builder = builder.settings(scene.solver_settings());
     let builder = if bodies.bodies().is_empty() {
         builder
     } else {

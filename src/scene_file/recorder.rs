@@ -16,8 +16,11 @@ pub(super) struct Recorder<'a> {
     frames_every: u64,
     checkpoints: &'a [u64],
     frames_dir: Option<&'a Path>,
-    /// The last good state: the mesh is replaced when a stage changes it (welding).
+    /// The last good state: the mesh is replaced when a stage changes it (welding), with
+    /// its seams still to weld and the radius within which self-collision exempts pairs.
     mesh: ClothMesh,
+    seams: Vec<[usize; 2]>,
+    exemption_radius: f64,
     positions: Vec<Vec3>,
     /// Simulated time of the last good state, s.
     time: f64,
@@ -36,6 +39,8 @@ pub(super) struct Recorder<'a> {
 /// What a run leaves: its last good state and what was recorded on the way.
 pub(super) struct Recorded {
     pub mesh: ClothMesh,
+    pub seams: Vec<[usize; 2]>,
+    pub exemption_radius: f64,
     pub positions: Vec<Vec3>,
     pub time: f64,
     pub checkpoints: Vec<Checkpoint>,
@@ -57,6 +62,8 @@ impl<'a> Recorder<'a> {
             checkpoints: &output.checkpoints,
             frames_dir,
             mesh: mesh.clone(),
+            seams: Vec::new(),
+            exemption_radius: 0.0,
             positions: positions.to_vec(),
             time: 0.0,
             stage: "",
@@ -128,6 +135,8 @@ impl<'a> Recorder<'a> {
     pub(super) fn finish(self) -> Recorded {
         Recorded {
             mesh: self.mesh,
+            seams: self.seams,
+            exemption_radius: self.exemption_radius,
             positions: self.positions,
             time: self.time,
             checkpoints: self.checkpoint_rows,
@@ -140,14 +149,21 @@ impl<'a> Recorder<'a> {
         if self.steps == 0 {
             // A stage may run on a new mesh (the welded garment).
             self.mesh.clone_from(sim.mesh());
+            self.seams.clear();
+            self.seams.extend_from_slice(sim.seams());
+            self.exemption_radius = sim.self_exemption_radius();
         }
         self.positions.clear();
         self.positions.extend_from_slice(sim.positions());
         self.time = sim.time();
         self.steps += 1;
         self.cg += stats.cg_iterations;
-        self.step_ms
-            .push(1e3 * (stats.assembly_seconds + stats.solve_seconds + stats.contact_seconds));
+        self.step_ms.push(
+            1e3 * (stats.assembly_seconds
+                + stats.solve_seconds
+                + stats.contact_seconds
+                + stats.self_collision_seconds),
+        );
         if self.checkpoints.contains(&self.steps) {
             let strain = StrainSummary::of(sim.mesh(), sim.positions());
             self.checkpoint_rows.push(Checkpoint {
@@ -189,6 +205,7 @@ impl<'a> Recorder<'a> {
             stage: self.stage,
             step: self.steps,
             time: sim.time(),
+            self_intersections: sim.self_intersections().count,
         });
         Ok(())
     }

@@ -3,7 +3,7 @@
 use crate::collide::SurfaceOptions;
 use crate::garment::mannequin::Measurements;
 use crate::garment::sewing::{DrapeSettings, SewingSettings};
-use cloth_core::{Fabric, KesMeasurement, RestCriteria, SolverSettings};
+use cloth_core::{Fabric, KesMeasurement, RestCriteria, SelfCollision, SolverSettings};
 use serde::Deserialize;
 use std::path::PathBuf;
 
@@ -27,8 +27,35 @@ pub struct SceneFile {
     pub sewing: SewingSettings,
     #[serde(default)]
     pub drape: DrapeSettings,
+    /// The cloth's collision with itself, in every stage (on unless `enabled = false`).
+    #[serde(default)]
+    pub self_collision: SelfCollision,
     #[serde(default)]
     pub output: OutputSpec,
+}
+
+impl SceneFile {
+    /// The settings of a sheet's run: `[solver]` with the scene's self-collision.
+    pub fn solver_settings(&self) -> SolverSettings {
+        SolverSettings {
+            self_collision: self.self_collision,
+            ..self.solver.clone()
+        }
+    }
+    /// The sewing stage's settings: `[sewing]` with the scene's self-collision.
+    pub fn sewing_settings(&self) -> SewingSettings {
+        SewingSettings {
+            self_collision: self.self_collision,
+            ..self.sewing
+        }
+    }
+    /// The draping stage's settings: `[drape]` with the scene's self-collision.
+    pub fn drape_settings(&self) -> DrapeSettings {
+        DrapeSettings {
+            self_collision: self.self_collision,
+            ..self.drape
+        }
+    }
 }
 
 /// What the cloth is.

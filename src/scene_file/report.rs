@@ -1,7 +1,7 @@
 //! What a run reports (report.json; report.md says the same in tables).
 
 use crate::garment::sewing::{DrapeSettings, SewingSettings};
-use cloth_core::{ClothMesh, RestCriteria, SolverSettings, StrainReport, Vec3};
+use cloth_core::{ClothMesh, RestCriteria, SelfCollision, SolverSettings, StrainReport, Vec3};
 use serde::Serialize;
 
 /// What one stage did.
@@ -39,10 +39,12 @@ pub enum RunSettings {
     Garment {
         sewing: SewingSettings,
         drape: DrapeSettings,
+        self_collision: SelfCollision,
     },
     Sheet {
         solver: SolverSettings,
         rest: RestCriteria,
+        self_collision: SelfCollision,
     },
 }
 
@@ -98,6 +100,11 @@ pub struct RunReport {
     pub strain: StrainSummary,
     /// The deepest any particle is inside a body at the end, m.
     pub deepest_penetration: f64,
+    /// Edge-triangle pairs of the cloth passing through each other at the end (pairs
+    /// sharing or neighbouring particles, or near in the flat cloth, exempt).
+    pub self_intersections: usize,
+    /// Cloth edges passing through body triangles at the end, counted the same way.
+    pub body_intersections: usize,
     /// The widest seam gap: when the seams were welded, or at the end if they never were,
     /// m (garments only).
     pub largest_seam_gap: Option<f64>,
@@ -141,4 +148,6 @@ pub struct FrameRecord {
     pub stage: &'static str,
     pub step: u64,
     pub time: f64,
+    /// The cloth's edge-triangle pairs passing through each other in the frame.
+    pub self_intersections: usize,
 }

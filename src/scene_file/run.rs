@@ -10,7 +10,7 @@ use super::report::{Measurement, RunOutcome, RunReport, RunSettings, StrainSumma
 use super::SceneFileError;
 use crate::garment::sewing::{drape, sew};
 use crate::garment::GarmentError;
-use cloth_core::{ClothMesh, StopReason, Vec3};
+use cloth_core::{count_body_intersections, count_self_intersections, ClothMesh, StopReason, Vec3};
 use std::path::Path;
 use std::time::Instant;
 
@@ -54,20 +54,17 @@ impl Prepared {
                     &garment.mesh,
                     garment.mesh.positions(),
                 );
-                rec.begin("sewing", scene.sewing.max_steps);
-                let sewn = sew(
-                    &garment,
-                    &fabrics,
-                    self.bodies.clone(),
-                    &scene.sewing,
-                    |sim, s, _| rec.step(sim, s),
-                );
+                let (sewing, drape_settings) = (scene.sewing_settings(), scene.drape_settings());
+                rec.begin("sewing", sewing.max_steps);
+                let sewn = sew(&garment, &fabrics, self.bodies.clone(), &sewing, |sim, s, _| {
+                    rec.step(sim, s)
+                });
                 match sewn {
                     Ok(sewn) => {
                         stages.push(rec.end("sewn"));
                         gap = Some(sewn.report.max_gap);
-                        rec.begin("draping", scene.drape.max_steps);
-                        match drape(&sewn, self.bodies.clone(), &scene.drape, |sim, s| {
+                        rec.begin("draping", drape_settings.max_steps);
+                        match drape(&sewn, self.bodies.clone(), &drape_settings, |sim, s| {
                             rec.step(sim, s)
                         }) {
                             Ok(draped) => outcome = ended(&mut rec, &mut stages, draped.outcome.reason),
@@ -83,8 +80,9 @@ impl Prepared {
                 gap = gap.or_else(|| Some(garment.widest_gap(rec.positions()).1));
                 (
                     RunSettings::Garment {
-                        sewing: scene.sewing,
-                        drape: scene.drape,
+                        sewing,
+                        drape: drape_settings,
+                        self_collision: scene.self_collision,
                     },
                     rec,
                 )
@@ -105,6 +103,7 @@ impl Prepared {
                     RunSettings::Sheet {
                         solver: scene.solver.clone(),
                         rest: scene.rest,
+                        self_collision: scene.self_collision,
                     },
                     rec,
                 )
@@ -112,12 +111,16 @@ impl Prepared {
         };
         let Recorded {
             mesh,
+            seams,
+            exemption_radius,
             positions,
             time,
             checkpoints,
             frames,
         } = rec.finish();
         let (deepest, _) = self.bodies.deepest_inside(time, &positions);
+        let self_intersections = count_self_intersections(&mesh, &seams, exemption_radius, &positions).count;
+        let body_intersections = count_body_intersections(self.bodies.as_ref(), time, &mesh, &positions);
         let measurement = match (&outcome, sheet_test) {
             (RunOutcome::Finished, Some(test)) => Some(measure(test, &mesh, &positions)),
             _ => None,
@@ -133,6 +136,8 @@ impl Prepared {
             simulated_time: time,
             strain: StrainSummary::of(&mesh, &positions),
             deepest_penetration: deepest,
+            self_intersections,
+            body_intersections,
             largest_seam_gap: gap,
             checkpoints,
             measurement,

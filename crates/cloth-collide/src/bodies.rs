@@ -102,6 +102,13 @@ impl Collider for Bodies {
         self.bodies.iter().map(|b| b.thickness()).fold(0.0, f64::max)
     }
 
+    fn segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize {
+        self.bodies
+            .iter()
+            .map(|body| body.segment_crossings(t, a, b))
+            .sum()
+    }
+
     fn sharp_features(&self, t: f64, out: &mut Vec<SharpFeature>) {
         for body in &self.bodies {
             if body.sharp_features().is_empty() {

@@ -4,8 +4,10 @@
 use crate::convert::{from_parry, to_parry};
 use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
 use crate::Motion;
+use cloth_core::self_contact::geometry::segment_crosses_triangle;
 use cloth_core::Vec3;
 use nalgebra::{Isometry3, Point3};
+use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::query::{PointQuery, PointQueryWithLocation, Ray, RayCast};
 use parry3d_f64::shape::{TriMesh, TriMeshFlags, TrianglePointLocation};
 use std::collections::HashSet;
@@ -206,6 +208,25 @@ impl Body {
 
     /// Signed distance of `x` from the surface at time `t` (negative inside), with no
     /// distance limit.
+    /// How many of the body's triangles the segment from `a` to `b` passes through at
+    /// time `t` (see [`cloth_core::Collider::segment_crossings`]).
+    pub fn segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize {
+        let pose = self.pose(t);
+        let (p, q) = (
+            pose.inverse_transform_point(&Point3::from(*a)).coords,
+            pose.inverse_transform_point(&Point3::from(*b)).coords,
+        );
+        let bounds = Aabb::new(to_parry(&p.inf(&q)), to_parry(&p.sup(&q)));
+        self.mesh
+            .bvh()
+            .intersect_aabb(&bounds)
+            .filter(|&k| {
+                let tri = self.mesh.triangle(k);
+                segment_crosses_triangle(&p, &q, &[tri.a, tri.b, tri.c].map(from_parry))
+            })
+            .count()
+    }
+
     pub fn signed_distance(&self, t: f64, x: &Vec3) -> f64 {
         let p = self.pose(t).inverse_transform_point(&Point3::from(*x));
         self.mesh.distance_to_local_point(to_parry(&p.coords), false)

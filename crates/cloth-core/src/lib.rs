@@ -20,7 +20,7 @@ pub mod metrics;
 pub mod self_contact;
 pub mod solver;
 
-pub use contact::{Collider, ContactMode, Proximity, SharpFeature, SurfacePoint};
+pub use contact::{count_body_intersections, Collider, ContactMode, Proximity, SharpFeature, SurfacePoint};
 pub use error::{DivergenceReason, MeshError, ParamError, SimError};
 pub use fabric::{
     BendingLaw, BendingRigidity, Fabric, KesConversion, KesDirection, KesMeasurement, SourceCoefficients,

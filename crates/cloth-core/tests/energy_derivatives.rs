@@ -2,6 +2,7 @@
 //! against the forces, at random states with stretched, compressed, sheared and folded
 //! elements; PSD of the solver's Jacobians; zero net force and torque.
 
+use cloth_core::energy::repulsion::{add_friction_drag, add_repulsion, ContactFrame, RepulsionLaw};
 use cloth_core::energy::{
     bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch, stretch::ThreadLaw,
     HessianMode, Local, TriangleRest,
@@ -435,4 +436,109 @@ fn damping_and_drag_are_consistent_and_dissipative() {
         - particle::gravity_energy(m, &g, &(p - Vec3::z() * H)))
         / (2.0 * H);
     assert!((-fd - m * g.z).abs() < 1e-8);
+}
+
+/// Two layers' contact (see `cloth_core::energy::repulsion`): a particle over a random
+/// triangle, at gaps from inside the law's linear knee to beyond its distance, with the
+/// contact's frozen normal off the true gap direction. The geometry is a few cm so the
+/// finite-difference step resolves the hardening law's curvature.
+#[test]
+fn repulsion_and_friction_between_layers_match_finite_differences() {
+    let mut rng = StdRng::seed_from_u64(11);
+    let law = RepulsionLaw {
+        stiffness: 150.0,
+        distance: 0.05,
+    };
+    let knee = law.distance * (RepulsionLaw::LEAST_GAP + 0.01 * (1.0 - RepulsionLaw::LEAST_GAP));
+    for k in 0..60 {
+        let (_, t) = random_triangle(&mut rng);
+        let t = t.map(|p| 2.0 * p);
+        let n = (t[1] - t[0]).cross(&(t[2] - t[0])).normalize();
+        let b = {
+            let raw: [f64; 3] = std::array::from_fn(|_| rng.random_range(0.05..1.0));
+            let sum: f64 = raw.iter().sum();
+            raw.map(|r| r / sum)
+        };
+        let foot = b[0] * t[0] + b[1] * t[1] + b[2] * t[2];
+        // Gaps inside the knee, hardening, near and beyond the distance.
+        let gap = match k % 4 {
+            0 => rng.random_range(0.3..0.5) * law.distance,
+            1 => rng.random_range(0.55..0.9) * law.distance,
+            2 => rng.random_range(0.9..1.0) * law.distance,
+            _ => rng.random_range(1.0..1.8) * law.distance,
+        };
+        if (gap - knee).abs() < 1e-4 {
+            continue;
+        }
+        let tilt = Vec3::new(rng.random_range(-0.2..0.2), rng.random_range(-0.2..0.2), 0.0);
+        let frame = ContactFrame {
+            weights: [1.0, -b[0], -b[1], -b[2]],
+            normal: (n + 0.3 * tilt.cross(&n)).normalize(),
+        };
+        // The particle sits `gap` along the frame's normal from the triangle's point.
+        let p = foot + gap * frame.normal;
+        let x = [p, t[0], t[1], t[2]];
+        let spring = |x: &[Vec3; 4], _| {
+            let mut l = Local::default();
+            add_repulsion(&frame, &law, x, &mut l);
+            l
+        };
+        check_derivatives("repulsion", &x, spring);
+        let local = spring(&x, HessianMode::Exact);
+        assert_psd("repulsion", &local.hessian_dense());
+        let net: Vec3 = local.grad.iter().sum();
+        assert!(net.norm() <= 1e-9 * local.grad[0].norm(), "net force {net}");
+        assert!((frame.gap(&x) - gap).abs() < 1e-12);
+
+        let v: [Vec3; 4] = std::array::from_fn(|_| {
+            Vec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+        });
+        let drag = rng.random_range(0.1..50.0);
+        let friction = |v: &[Vec3; 4], _| {
+            let mut l = Local::default();
+            add_friction_drag(&frame, drag, v, &mut l);
+            l
+        };
+        check_derivatives("friction drag", &v, friction);
+        let local = friction(&v, HessianMode::Exact);
+        assert_psd("friction drag", &local.hessian_dense());
+        // The drag acts across the normal only, against the sliding: it dissipates.
+        let force: Vec<Vec3> = local.grad.iter().map(|g| -g).collect();
+        let power: f64 = force.iter().zip(&v).map(|(f, v)| f.dot(v)).sum();
+        assert!(power <= 0.0, "friction does work {power}");
+        let along: f64 = force.iter().map(|f| f.dot(&frame.normal).abs()).sum();
+        assert!(along <= 1e-9 * force.iter().map(|f| f.norm()).sum::<f64>());
+    }
+}
+
+#[test]
+fn the_repulsion_law_is_a_spring_at_the_distance_that_hardens_without_bound() {
+    let law = RepulsionLaw {
+        stiffness: 80.0,
+        distance: 5e-4,
+    };
+    let d = law.distance;
+    let (e, f, s) = law.at(d);
+    assert!(e.abs() < 1e-18 && f.abs() < 1e-15, "{e} {f}");
+    assert!((s - law.stiffness).abs() < 1e-9 * law.stiffness);
+    // Pressed to three quarters, the force is twice a linear spring's; near the least gap
+    // (half the distance) it grows like 1 / (g - d / 2).
+    let (_, f75, _) = law.at(0.75 * d);
+    assert!((f75 / (law.stiffness * 0.25 * d) - 2.0).abs() < 1e-9, "{f75}");
+    let (_, f51, _) = law.at(0.51 * d);
+    let (_, f52, _) = law.at(0.52 * d);
+    assert!((f51 / f52 - (0.02 * 0.49) / (0.01 * 0.48)).abs() < 1e-9);
+    // Beyond the distance it pulls (the contact is one spring within a step), and below the
+    // knee it goes on straight: energy, force and stiffness continuous there.
+    assert!(law.at(1.2 * d).1 < 0.0);
+    let knee = d * (RepulsionLaw::LEAST_GAP + 0.01 * (1.0 - RepulsionLaw::LEAST_GAP));
+    let (above, below) = (law.at(knee + 1e-12), law.at(knee - 1e-12));
+    for (a, b) in [(above.0, below.0), (above.1, below.1), (above.2, below.2)] {
+        assert!((a - b).abs() <= 1e-6 * a.abs().max(1e-30), "{a} vs {b}");
+    }
+    assert!(law.at(0.3 * d).1 > law.at(knee).1);
 }

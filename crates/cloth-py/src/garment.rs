@@ -7,7 +7,7 @@ use crate::errors::{garment as garment_error, input};
 use crate::fabric::Fabric;
 use crate::mesh::ClothMesh;
 use crate::observe::Watcher;
-use crate::simulation::{RestOutcome, Simulation};
+use crate::simulation::{self_collision_of, RestOutcome, Simulation};
 use cloth::garment::garmentcode::{self, ImportOptions};
 use cloth::garment::sewing::{drape, sew, DrapeSettings, SewingSettings, Sewn};
 use cloth::garment::GarmentBuilder;
@@ -138,16 +138,18 @@ impl Garment {
     }
     /// The source's second stage: gravity off, the seams pulled closed and welded. `fabric`
     /// is one fabric for every panel (panels that name a preset get theirs) or one per
-    /// panel. `settings` are a scene's `[sewing]` keys. `callback` sees a Snapshot every
-    /// `every` steps; returning False stops the sewing (SimulationError). Seams that will
-    /// not close raise SimulationError.
-    #[pyo3(signature = (bodies, fabric, *, settings = None, callback = None, every = 1))]
+    /// panel. `settings` are a scene's `[sewing]` keys; `self_collision` as for
+    /// Simulation. `callback` sees a Snapshot every `every` steps; returning False stops
+    /// the sewing (SimulationError). Seams that will not close raise SimulationError.
+    #[pyo3(signature = (bodies, fabric, *, settings = None, self_collision = None, callback = None, every = 1))]
+    #[allow(clippy::too_many_arguments)]
     fn sew(
         &self,
         py: Python<'_>,
         bodies: Vec<PyRef<'_, Body>>,
         fabric: &Bound<'_, PyAny>,
         settings: Option<&Bound<'_, PyAny>>,
+        self_collision: Option<&Bound<'_, PyAny>>,
         callback: Option<Py<PyAny>>,
         every: u64,
     ) -> PyResult<SewnGarment> {
@@ -168,9 +170,12 @@ impl Garment {
             }
             list.iter().map(|f| f.inner.clone()).collect()
         };
-        let settings: SewingSettings = match settings {
-            Some(s) => from_dict(s, "sewing")?,
-            None => SewingSettings::default(),
+        let settings = SewingSettings {
+            self_collision: self_collision_of(self_collision)?,
+            ..match settings {
+                Some(s) => from_dict(s, "sewing")?,
+                None => SewingSettings::default(),
+            }
         };
         settings.validate().map_err(input)?;
         let mut watcher = Watcher::new(callback, every)?;
@@ -227,19 +232,23 @@ impl SewnGarment {
         Ok(d)
     }
     /// The source's third stage: gravity on, until at rest (`settings` are a scene's
-    /// `[drape]` keys).
-    #[pyo3(signature = (bodies, *, settings = None, callback = None, every = 1))]
+    /// `[drape]` keys; `self_collision` as for Simulation).
+    #[pyo3(signature = (bodies, *, settings = None, self_collision = None, callback = None, every = 1))]
     fn drape(
         &self,
         py: Python<'_>,
         bodies: Vec<PyRef<'_, Body>>,
         settings: Option<&Bound<'_, PyAny>>,
+        self_collision: Option<&Bound<'_, PyAny>>,
         callback: Option<Py<PyAny>>,
         every: u64,
     ) -> PyResult<Draped> {
-        let settings: DrapeSettings = match settings {
-            Some(s) => from_dict(s, "drape")?,
-            None => DrapeSettings::default(),
+        let settings = DrapeSettings {
+            self_collision: self_collision_of(self_collision)?,
+            ..match settings {
+                Some(s) => from_dict(s, "drape")?,
+                None => DrapeSettings::default(),
+            }
         };
         settings.validate().map_err(input)?;
         let mut watcher = Watcher::new(callback, every)?;

@@ -68,6 +68,24 @@ pub struct StepStats {
     /// Wall time in the end-of-step contact passes, s.
     #[pyo3(get)]
     pub contact_seconds: f64,
+    /// Pairs of the cloth closer than their contact distance, repelled in the step.
+    #[pyo3(get)]
+    pub self_contacts: usize,
+    /// Pairs of the cloth found passing through each other and turned back by impulses.
+    #[pyo3(get)]
+    pub self_impacts: usize,
+    /// Particles moved as impact zones.
+    #[pyo3(get)]
+    pub self_zone_particles: usize,
+    /// Particles stopped where they started the step (the last resort).
+    #[pyo3(get)]
+    pub self_frozen: usize,
+    /// Pairs still passing through each other that nothing could stop.
+    #[pyo3(get)]
+    pub self_unresolved: usize,
+    /// Wall time in self-collision, s.
+    #[pyo3(get)]
+    pub self_collision_seconds: f64,
     raw: cloth::StepStats,
 }
 
@@ -91,6 +109,12 @@ impl From<cloth::StepStats> for StepStats {
             feature_contacts: s.feature_contacts,
             feature_corrections: s.feature_corrections,
             contact_seconds: s.contact_seconds,
+            self_contacts: s.self_contacts,
+            self_impacts: s.self_impacts,
+            self_zone_particles: s.self_zone_particles,
+            self_frozen: s.self_frozen,
+            self_unresolved: s.self_unresolved,
+            self_collision_seconds: s.self_collision_seconds,
             raw: s,
         }
     }
@@ -212,6 +236,24 @@ pub fn strain(py: Python<'_>, mesh: &ClothMesh, positions: &Bound<'_, PyAny>) ->
     Ok(Strain::new(py, report))
 }
 
+/// Self-collision from Python: None or True, the default; False, off; or a scene's
+/// `[self_collision]` keys.
+pub fn self_collision_of(value: Option<&Bound<'_, PyAny>>) -> PyResult<cloth::SelfCollision> {
+    match value {
+        None => Ok(cloth::SelfCollision::default()),
+        Some(v) if v.is_instance_of::<pyo3::types::PyBool>() => Ok(if v.extract::<bool>()? {
+            cloth::SelfCollision::default()
+        } else {
+            cloth::SelfCollision::off()
+        }),
+        Some(v) => {
+            let s: cloth::SelfCollision = from_dict(v, "self_collision")?;
+            s.validate().map_err(input)?;
+            Ok(s)
+        }
+    }
+}
+
 /// The source's measure on a grid: the largest stretch between neighbouring particles
 /// along the warp and along the weft, %; None if the mesh is not a grid.
 #[pyfunction]
@@ -223,8 +265,10 @@ pub fn grid_stretch(mesh: &ClothMesh, positions: &Bound<'_, PyAny>) -> PyResult<
 /// A cloth on bodies, stepped by explicit or implicit Euler. `pins` are particle numbers
 /// held where they start (or at `pin_positions`, `(K, 3)`); `settings` are a scene's
 /// `[solver]` keys (`integrator`, `time_step`, `gravity`, `wind`, `pcg`, `max_speed`,
-/// `max_kinetic_energy`, `parallel`). Stepping releases the GIL; a divergence raises
-/// SimulationError and keeps the last good state.
+/// `max_kinetic_energy`, `parallel`); `self_collision` is True (the default), False, or a
+/// scene's `[self_collision]` keys (`enabled`, `thickness`, `friction`, `stiffness`).
+/// Stepping releases the GIL; a divergence raises SimulationError and keeps the last good
+/// state.
 #[pyclass(module = "cloth")]
 pub struct Simulation {
     pub inner: cloth::Simulation,
@@ -252,7 +296,7 @@ impl Simulation {
 #[pymethods]
 impl Simulation {
     #[new]
-    #[pyo3(signature = (mesh, fabric, *, bodies = Vec::new(), pins = None, pin_positions = None, settings = None, velocities = None))]
+    #[pyo3(signature = (mesh, fabric, *, bodies = Vec::new(), pins = None, pin_positions = None, settings = None, velocities = None, self_collision = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         mesh: &ClothMesh,
@@ -262,11 +306,15 @@ impl Simulation {
         pin_positions: Option<&Bound<'_, PyAny>>,
         settings: Option<&Bound<'_, PyAny>>,
         velocities: Option<&Bound<'_, PyAny>>,
+        self_collision: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let n = mesh.inner.vertex_count();
-        let settings: SolverSettings = match settings {
-            Some(s) => from_dict(s, "solver")?,
-            None => SolverSettings::default(),
+        let settings = SolverSettings {
+            self_collision: self_collision_of(self_collision)?,
+            ..match settings {
+                Some(s) => from_dict(s, "solver")?,
+                None => SolverSettings::default(),
+            }
         };
         let pinned = match pins {
             Some(p) => index_list(p, "pins", n)?,
@@ -427,6 +475,28 @@ impl Simulation {
     fn deepest_penetration(&self, py: Python<'_>) -> f64 {
         let (bodies, inner) = (&self.bodies, &self.inner);
         py.detach(|| bodies.deepest_inside(inner.time(), inner.positions()).0)
+    }
+    /// How many edge-triangle pairs of the cloth pass through each other now (pairs
+    /// sharing or neighbouring particles, or near in the flat cloth, exempt).
+    fn self_intersections(&self, py: Python<'_>) -> usize {
+        let inner = &self.inner;
+        py.detach(|| inner.self_intersections().count)
+    }
+    /// How many cloth edges pass through a body triangle now, counted the same way.
+    fn body_intersections(&self, py: Python<'_>) -> usize {
+        let inner = &self.inner;
+        py.detach(|| inner.body_intersections())
+    }
+    /// The smallest distance of a particle from a triangle of the cloth (exempt pairs
+    /// aside), m, if one is under `within`: how close the layers come.
+    fn closest_self_approach(&self, py: Python<'_>, within: f64) -> PyResult<Option<f64>> {
+        if !(within.is_finite() && within > 0.0) {
+            return Err(input(format!(
+                "within = {within}: expected a positive distance in m"
+            )));
+        }
+        let inner = &self.inner;
+        Ok(py.detach(|| inner.closest_self_approach(within)))
     }
 
     fn __repr__(&self) -> String {

@@ -98,4 +98,9 @@ pub trait Collider: Send + Sync + std::fmt::Debug {
 
     /// The sharp features of every body at time `t`, appended to `out`.
     fn sharp_features(&self, t: f64, out: &mut Vec<SharpFeature>);
+
+    /// How many body triangles the segment from `a` to `b` passes through at time `t`,
+    /// each decided by [`crate::self_contact::geometry::segment_crosses_triangle`], as the
+    /// cloth's own intersections are.
+    fn segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize;
 }

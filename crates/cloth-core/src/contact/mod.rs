@@ -8,8 +8,20 @@ pub use collider::{Collider, Proximity, SharpFeature, SurfacePoint};
 pub(crate) use particle_contacts::ParticleContacts;
 pub use particle_contacts::{ContactMode, SLIP_SPEED};
 
+use crate::mesh::ClothMesh;
 use crate::Vec3;
 use std::sync::Arc;
+
+/// The edges of `mesh` at positions `x` passing through the triangles of `collider`'s
+/// bodies at time `t`, counted edge-triangle pair by pair as the cloth's own
+/// intersections are ([`crate::count_self_intersections`]).
+pub fn count_body_intersections(collider: &dyn Collider, t: f64, mesh: &ClothMesh, x: &[Vec3]) -> usize {
+    use rayon::prelude::*;
+    mesh.edges()
+        .par_iter()
+        .map(|&[a, b]| collider.segment_crossings(t, &x[a], &x[b]))
+        .sum()
+}
 
 /// Everything the solver keeps for contacts: the bodies, the per-particle state and the
 /// scratch of the end-of-step passes.

@@ -119,6 +119,12 @@ pub(crate) struct SelfContacts {
     topology: Topology,
     /// Each particle's half thickness (its share of a contact distance) and friction.
     half_thickness: Vec<f64>,
+    /// Each particle's inverse mass, zero when pinned.
+    inv_mass: Vec<f64>,
+    /// The friction the step's contacts can exert on each particle, N, and the particles
+    /// with some (see [`SelfContacts::set_friction`]).
+    brake: Vec<f64>,
+    braked: Vec<u32>,
     friction: Vec<f64>,
     stiffness: f64,
     /// The largest contact distance, m.
@@ -128,9 +134,11 @@ pub(crate) struct SelfContacts {
     triangle_tree: Bvh,
     edge_tree: Bvh,
     vertex_tree: Bvh,
-    /// The step's contacts, and each one's friction drag, N s/m.
+    /// The step's contacts, each one's friction drag (N s/m) and the stiffness of its
+    /// repulsion at the start of the step (N/m).
     pub contacts: Vec<Contact>,
     drag: Vec<f64>,
+    normal_stiffness: Vec<f64>,
     /// The contacts of each particle, (contact, corner), in compressed rows.
     by_particle: Vec<u32>,
     by_particle_list: Vec<(u32, u8)>,
@@ -144,9 +152,12 @@ pub(crate) struct SelfContacts {
 impl SelfContacts {
     /// Self-collision for `mesh` with `seams` (pairs of particles to be joined), each
     /// particle of fabric `thickness[i]`, `friction[i]`; `settings` override them.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         mesh: &ClothMesh,
         seams: &[[usize; 2]],
+        masses: &[f64],
+        pinned: &[bool],
         settings: &SelfCollision,
         thickness: impl Fn(usize) -> f64,
         friction: impl Fn(usize) -> f64,
@@ -179,7 +190,14 @@ impl SelfContacts {
             response: response::Scratch::new(n, topology.triangles.len(), topology.edges.len()),
             topology,
             half_thickness,
+            inv_mass: masses
+                .iter()
+                .zip(pinned)
+                .map(|(m, &p)| if p { 0.0 } else { 1.0 / m })
+                .collect(),
             friction,
+            brake: vec![0.0; n],
+            braked: Vec::new(),
             reach,
             touch,
             triangle_tree,
@@ -187,6 +205,7 @@ impl SelfContacts {
             vertex_tree,
             contacts: Vec::new(),
             drag: Vec::new(),
+            normal_stiffness: Vec::new(),
             by_particle: Vec::new(),
             by_particle_list: Vec::new(),
             all_items,
@@ -195,16 +214,12 @@ impl SelfContacts {
         }
     }
 
-    /// Finds the contacts at `x` for a step of length `h` from velocities `v`, and sets
-    /// each one's friction: a drag `mu f / s` against the two points' sliding, `f` the
-    /// repulsion's push and `s` their sliding speed at the start (at least [`SLIP_SPEED`],
-    /// under which friction holds them). Explicit steps take at most the drag they can
-    /// integrate stably.
+    /// Finds the contacts at `x` for a step of length `h` from velocities `v` (looking
+    /// ahead along the motion only in an `implicit` step; explicit steps are too short).
     pub fn detect(
         &mut self,
         x: &[Vec3],
         v: &[Vec3],
-        masses: &[f64],
         pinned: &[bool],
         h: f64,
         implicit: bool,
@@ -244,25 +259,6 @@ impl SelfContacts {
             &mut self.by_particle,
             &mut self.by_particle_list,
         );
-        self.drag.clear();
-        for c in &self.contacts {
-            let push = self.law(c).at(c.gap).1.max(0.0);
-            let sliding = {
-                let n = c.frame.normal;
-                let u = c.frame.relative(&c.gather(v));
-                (u - u.dot(&n) * n).norm()
-            };
-            let mut drag = c.friction * push / sliding.max(SLIP_SPEED);
-            if !implicit {
-                // Forward Euler damps a drag c on mass m only while h c / m < 2.
-                let lightest = (0..4)
-                    .filter(|&k| c.frame.weights[k] != 0.0)
-                    .map(|k| masses[c.particles[k] as usize])
-                    .fold(f64::INFINITY, f64::min);
-                drag = drag.min(0.5 * lightest / h);
-            }
-            self.drag.push(drag);
-        }
     }
 
     fn law(&self, c: &Contact) -> RepulsionLaw {
@@ -287,19 +283,129 @@ impl SelfContacts {
             })
     }
 
-    /// The contacts' forces (repulsion and friction at `v`) into `force` and the
-    /// repulsion's `K v` into `kv`; for an implicit step of length `h`, `h^2 K + h C` into
-    /// the matrix's transient couplings. Returns the repulsion's energy.
-    pub fn add_forces(
-        &self,
-        x: &[Vec3],
-        v: &[Vec3],
-        force: &mut [Vec3],
-        kv: &mut [Vec3],
-        mut implicit: Option<(&mut BlockSparse, f64)>,
-    ) -> f64 {
+    /// Whether the step's contacts have friction to set after a scouting solve.
+    pub fn has_friction(&self) -> bool {
+        self.contacts
+            .iter()
+            .any(|c| c.friction > 0.0 && c.gap < c.distance)
+    }
+
+    /// The friction each particle's contacts can exert, `L_i = sum |w| mu f` over its
+    /// contacts (`f` a contact's push), into `brake`.
+    fn gather_brakes(&mut self) {
+        for &i in &self.braked {
+            self.brake[i as usize] = 0.0;
+        }
+        self.braked.clear();
+        for c in &self.contacts {
+            let limit = c.friction * self.law(c).at(c.gap).1.max(0.0);
+            if limit == 0.0 {
+                continue;
+            }
+            for k in 0..4 {
+                let i = c.particles[k] as usize;
+                if self.brake[i] == 0.0 {
+                    self.braked.push(i as u32);
+                }
+                self.brake[i] += c.frame.weights[k].abs() * limit;
+            }
+        }
+    }
+
+    /// Coulomb friction for each contact as a viscous drag `c` against the two points'
+    /// sliding (relative, across the normal), from the sliding `u*` that the step would
+    /// end with without friction between the layers (`slide(c)`). Friction can take off
+    /// it what the friction of every contact on the pair's particles can,
+    /// `h sum_k |w_k| L_k / m_k` (see [`SelfContacts::gather_brakes`]; pinned particles do
+    /// not move): a particle lies on a layer through several contacts, and each alone
+    /// would take the whole layer's friction for its own. When what is left, `s`, exceeds
+    /// [`SLIP_SPEED`], `c = mu f / s` ends the pair sliding at `s` against exactly `mu f`;
+    /// otherwise `c = mu f / SLIP_SPEED` holds it.
+    fn set_friction(&mut self, h: f64, slide: impl Fn(&Contact) -> f64) {
+        self.gather_brakes();
+        self.drag.clear();
+        for c in &self.contacts {
+            let limit = c.friction * self.law(c).at(c.gap).1.max(0.0);
+            let brake: f64 = (0..4)
+                .map(|k| {
+                    let i = c.particles[k] as usize;
+                    c.frame.weights[k].abs() * self.inv_mass[i] * self.brake[i]
+                })
+                .sum();
+            self.drag.push(limit / (slide(c) - h * brake).max(SLIP_SPEED));
+        }
+    }
+
+    /// The tangential part of the pair's relative motion `u`.
+    fn sliding(c: &Contact, u: Vec3) -> f64 {
+        let n = c.frame.normal;
+        (u - u.dot(&n) * n).norm()
+    }
+
+    /// Friction for an explicit step of length `h` from `v`, `force` every other force:
+    /// the sliding without it predicted pair by pair, `u + h sum_k w_k F_k / m_k`, and the
+    /// drag capped at what forward Euler integrates stably.
+    pub fn explicit_friction(&mut self, v: &[Vec3], force: &[Vec3], h: f64) {
+        let inv_mass = std::mem::take(&mut self.inv_mass);
+        self.set_friction(h, |c| {
+            let pull: Vec3 = (0..4)
+                .map(|k| {
+                    let i = c.particles[k] as usize;
+                    (c.frame.weights[k] * inv_mass[i]) * force[i]
+                })
+                .sum();
+            Self::sliding(c, c.frame.relative(&c.gather(v)) + h * pull)
+        });
+        for (c, drag) in self.contacts.iter().zip(&mut self.drag) {
+            // Forward Euler damps a drag c on mass m only while h c / m < 2.
+            let mobility: f64 = (0..4)
+                .map(|k| c.frame.weights[k].powi(2) * inv_mass[c.particles[k] as usize])
+                .sum();
+            *drag = drag.min(0.5 / (h * mobility));
+        }
+        self.inv_mass = inv_mass;
+    }
+
+    /// An implicit step's friction, none at first: it is set after a scouting solve
+    /// ([`SelfContacts::friction_from_motion`]).
+    pub fn no_friction(&mut self) {
+        self.drag.clear();
+        self.drag.resize(self.contacts.len(), 0.0);
+    }
+
+    /// Friction from a scouting solve of the step without it, which ended with
+    /// velocities `v_end`, then brought into the system: `b += h F_f(v0)` and the
+    /// couplings `A += h C` (with the repulsion's, set again). The scout's motion carries
+    /// the cloth's elastic response, which a prediction from each pair's own particles'
+    /// forces misses: there the pairs of a sliding sheet see forces that vary from particle
+    /// to particle, and those that predict stopping hold the whole sheet.
+    pub fn friction_from_motion(
+        &mut self,
+        v0: &[Vec3],
+        v_end: &[Vec3],
+        h: f64,
+        b: &mut [Vec3],
+        matrix: &mut BlockSparse,
+    ) {
+        self.set_friction(h, |c| Self::sliding(c, c.frame.relative(&c.gather(v_end))));
+        for (c, &drag) in self.contacts.iter().zip(&self.drag) {
+            let mut local = Local::<4>::default();
+            add_friction_drag(&c.frame, drag, &c.gather(v0), &mut local);
+            for k in 0..4 {
+                b[c.particles[k] as usize] -= h * local.grad[k];
+            }
+        }
+        matrix.clear_transient();
+        self.couple(matrix, h);
+        matrix.finish_transient();
+    }
+
+    /// The contacts' forces (repulsion, and friction at `v` with the drags set) added to
+    /// `force`, and the repulsion's `K v` to `kv`. Returns the repulsion's energy.
+    pub fn add_forces(&mut self, x: &[Vec3], v: &[Vec3], force: &mut [Vec3], kv: &mut [Vec3]) -> f64 {
         let mut energy = 0.0;
         let (mut spring, mut friction) = (Local::<4>::default(), Local::<4>::default());
+        self.normal_stiffness.clear();
         for (c, &drag) in self.contacts.iter().zip(&self.drag) {
             spring.clear();
             friction.clear();
@@ -316,18 +422,23 @@ impl SelfContacts {
                 force[i] -= spring.grad[a] + friction.grad[a];
                 kv[i] += (0..4).map(|b| spring.hess[a][b] * ve[b]).sum::<Vec3>();
             }
-            if let Some((m, h)) = implicit.as_mut() {
-                // The element Hessians are `w_a w_b` times these.
-                let n = c.frame.normal;
-                let stiffness = (*h * *h * law.at(c.frame.gap(&xe)).2) * (n * n.transpose())
-                    + (*h * drag) * (Mat3::identity() - n * n.transpose());
-                let terms = (0..4)
-                    .filter(|&a| c.frame.weights[a] != 0.0)
-                    .map(|a| (c.particles[a] as usize, c.frame.weights[a] * Mat3::identity()));
-                m.add_coupling(stiffness, terms);
-            }
+            self.normal_stiffness.push(law.at(c.frame.gap(&xe)).2);
         }
         energy
+    }
+
+    /// The contacts' terms of an implicit step of length `h`, `h^2 K + h C`, as transient
+    /// couplings of `matrix`: each `(h^2 f' n n^T + h c P)` on its four particles by weight
+    /// (the element Hessians are `w_a w_b` times these).
+    pub fn couple(&self, matrix: &mut BlockSparse, h: f64) {
+        for ((c, &drag), &stiffness) in self.contacts.iter().zip(&self.drag).zip(&self.normal_stiffness) {
+            let nn = c.frame.normal * c.frame.normal.transpose();
+            let k = (h * h * stiffness) * nn + (h * drag) * (Mat3::identity() - nn);
+            let terms = (0..4)
+                .filter(|&a| c.frame.weights[a] != 0.0)
+                .map(|a| (c.particles[a] as usize, c.frame.weights[a] * Mat3::identity()));
+            matrix.add_coupling(k, terms);
+        }
     }
 
     /// Counts the intersecting edge-triangle pairs of the cloth at `x` (pairs sharing a

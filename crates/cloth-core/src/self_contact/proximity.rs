@@ -34,6 +34,12 @@ impl Contact {
 pub const LANDING_MARGIN: f64 = 0.1;
 /// How far beyond its contact distance a pair is looked for, in contact distances.
 pub const LOOK_AHEAD: f64 = 1.0;
+/// Least cosine between the normal of a contact beside a triangle's edge or corner and the
+/// triangle's own normal (15 degrees).
+const ACROSS_FACE: f64 = 0.966;
+/// Candidate triangles a particle's search keeps; beyond them every edge and corner
+/// contact stands (as near a surface folded many times over).
+const NEAR_TRIANGLES: usize = 32;
 
 /// What a proximity search needs of the cloth.
 pub(crate) struct Cloth<'a> {
@@ -96,23 +102,88 @@ impl Cloth<'_> {
     }
 
     /// Particle `p` against every triangle of `tree` (refitted to the triangles' boxes)
-    /// within `reach` (the largest distance a contact is looked for at).
+    /// within `reach` (the largest distance a contact is looked for at). Where `p`'s
+    /// nearest point on a triangle is on its edge or corner, the contact stands only if no
+    /// triangle around that edge or corner has `p` over its face: over a smooth surface the
+    /// face's contact is the surface's, and the neighbours' would be ridges at every edge
+    /// that catch a layer sliding across them. Over a ridge or a border, the edge or corner
+    /// is the nearest surface, and the first triangle having it speaks for it.
     pub fn particle_triangle(&self, p: usize, tree: &Bvh, reach: f64, found: &mut Vec<Contact>) {
         let xp = self.x[p];
+        // The candidates and where p is nearest each (a few: p's box meets the triangles
+        // around a handful of particles).
+        let mut near = [(0u32, [0.0; 3]); NEAR_TRIANGLES];
+        let mut count = 0;
+        let mut overflow = false;
         tree.query(&Aabb::point(&xp).inflated(reach), |t| {
             if self.topology.vertex_triangle_exempt(p, t) {
                 return;
             }
-            let tri = self.topology.triangles[t];
-            let [a, b, c] = tri.map(|i| self.x[i as usize]);
+            let [a, b, c] = self.topology.triangles[t].map(|i| self.x[i as usize]);
             let w = closest_on_triangle(&xp, &a, &b, &c);
-            if !self.topology.owns_point(t, &w) {
+            let q = w[0] * a + w[1] * b + w[2] * c;
+            if (xp - q).norm() >= reach {
                 return;
+            }
+            match near.get_mut(count) {
+                Some(slot) => *slot = (t as u32, w),
+                None => overflow = true,
+            }
+            count += 1;
+        });
+        let near = &near[..count.min(NEAR_TRIANGLES)];
+        let tris = &self.topology.triangles;
+        // Whether some candidate has p over its face (or, for a corner, over an edge too)
+        // among those having all of `feature`.
+        let covered = |feature: &[u32], edges_count: bool| {
+            near.iter().any(|(s, w)| {
+                let tri = tris[*s as usize];
+                let zeros = w.iter().filter(|&&x| x == 0.0).count();
+                feature.iter().all(|v| tri.contains(v))
+                    && (zeros == 0
+                        || (edges_count && zeros == 1 && {
+                            let k = w.iter().position(|&x| x == 0.0).expect("one zero");
+                            // The edge opposite corner k has the corner in `feature`.
+                            feature.iter().all(|v| *v != tri[k])
+                        }))
+            })
+        };
+        for &(t, w) in near {
+            let tri = tris[t as usize];
+            let zeros = w.iter().filter(|&&x| x == 0.0).count();
+            let stands = match zeros {
+                0 => true,
+                1 => {
+                    let k = w.iter().position(|&x| x == 0.0).expect("one zero");
+                    let edge = [tri[(k + 1) % 3], tri[(k + 2) % 3]];
+                    overflow || !covered(&edge, false)
+                }
+                _ => {
+                    let k = w.iter().position(|&x| x != 0.0).unwrap_or(0);
+                    overflow || !covered(&[tri[k]], true)
+                }
+            };
+            if !(stands && self.topology.owns_point(t as usize, &w)) {
+                continue;
             }
             let particles = [p as u32, tri[0], tri[1], tri[2]];
             let weights = [1.0, -w[0], -w[1], -w[2]];
-            found.extend(self.contact(particles, weights));
-        });
+            let Some(contact) = self.contact(particles, weights) else {
+                continue;
+            };
+            // Beside an edge or a corner, a contact nearly across the face's plane is one; one
+            // slanting off it is a particle level with the border of the other layer, which
+            // it slides past and would be stopped by as by a wall, and a pair not yet in
+            // contact there is not landing on the layer.
+            if zeros > 0 {
+                let [a, b, c] = tri.map(|i| self.x[i as usize]);
+                let face = (b - a).cross(&(c - a)).normalize();
+                if face.dot(&contact.frame.normal).abs() < ACROSS_FACE || contact.gap >= contact.distance {
+                    continue;
+                }
+            }
+            found.push(contact);
+        }
     }
 
     /// Edge `e` against every later edge of `tree` (refitted to the edges' boxes) within

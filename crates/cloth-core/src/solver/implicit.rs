@@ -55,12 +55,19 @@ impl Simulation {
             let implicit = with_stiffness.then_some((&mut self.matrix, h));
             energy += contacts.add_feature_penalty(&self.x, &self.v, &mut ws.force, &mut ws.hv, implicit);
         }
-        if let Some(sc) = &self.self_contacts {
-            let implicit = with_stiffness.then_some((&mut self.matrix, h));
-            energy += sc.add_forces(&self.x, &self.v, &mut ws.force, &mut ws.hv, implicit);
-        }
-        if with_stiffness {
-            self.matrix.finish_transient();
+        if let Some(sc) = &mut self.self_contacts {
+            // An implicit step sets the friction between layers after a scouting solve;
+            // an explicit one predicts it from the forces so far.
+            if with_stiffness {
+                sc.no_friction();
+            } else {
+                sc.explicit_friction(&self.v, &ws.force, h);
+            }
+            energy += sc.add_forces(&self.x, &self.v, &mut ws.force, &mut ws.hv);
+            if with_stiffness {
+                sc.couple(&mut self.matrix, h);
+                self.matrix.finish_transient();
+            }
         }
         energy
     }
@@ -101,7 +108,9 @@ impl Simulation {
                 .particles
                 .set_friction(h, &self.v, masses, &self.ws.force);
         }
-        let mut scouting = self.contacts.is_some();
+        // Friction between layers waits for the scout's motion.
+        let mut layer_friction = self.self_contacts.as_ref().is_some_and(|sc| sc.has_friction());
+        let mut scouting = self.contacts.is_some() || layer_friction;
         // Solves so far, the scout's included (so a step makes no more solves than without
         // it), and what the next one keeps of the last one's preconditioner.
         let mut pass = 0;
@@ -147,20 +156,40 @@ impl Simulation {
             stats.cg_iterations += outcome.iterations;
             stats.cg_residual = outcome.rel_residual;
             stats.cg_converged &= outcome.converged;
-            let Some(contacts) = &mut self.contacts else {
-                break;
-            };
             for ((dv, y), z) in ws.dv.iter_mut().zip(&ws.y).zip(&ws.z) {
                 *dv = y + z;
             }
-            contacts
-                .particles
-                .implicit_reactions(&self.matrix, &ws.b, &ws.dv, h, settings.rel_tolerance);
             // After the scout the step goes on to the full tolerance in any case: with the
             // same system if it let nothing go, else with the freed contacts (a re-solve
             // only frees directions: the preconditioner mostly serves).
             let last = !scouting && pass >= RELEASE_PASSES;
-            let released = contacts.particles.release_pulling(!last);
+            let released = match &mut self.contacts {
+                Some(contacts) => {
+                    contacts.particles.implicit_reactions(
+                        &self.matrix,
+                        &ws.b,
+                        &ws.dv,
+                        h,
+                        settings.rel_tolerance,
+                    );
+                    contacts.particles.release_pulling(!last)
+                }
+                None => 0,
+            };
+            if std::mem::take(&mut layer_friction) {
+                let sc = self.self_contacts.as_mut().expect("layer friction has contacts");
+                for ((v_end, v), dv) in ws.v_new.iter_mut().zip(&self.v).zip(&ws.dv) {
+                    *v_end = v + dv;
+                }
+                sc.friction_from_motion(&self.v, &ws.v_new, h, &mut ws.b, &mut self.matrix);
+                scouting = false;
+                pass += 1;
+                if released > 0 {
+                    self.refill_filter(h)?;
+                }
+                setup = Setup::Build;
+                continue;
+            }
             if last || (released == 0 && !scouting) {
                 break;
             }

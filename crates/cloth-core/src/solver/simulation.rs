@@ -203,7 +203,7 @@ impl SimulationBuilder {
                 .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
             c
         });
-        let self_contacts = self_contacts_for(&self.mesh, &self.seams, &self.settings, &model);
+        let self_contacts = self_contacts_for(&self.mesh, &self.seams, &self.settings, &model, &pinned);
         let pin_count = pins.len();
         let filter_capacity = if contacts.is_some() { n } else { pin_count };
         let zeros = vec![Vec3::zeros(); n];
@@ -344,7 +344,8 @@ impl Simulation {
     pub fn set_settings(&mut self, settings: SolverSettings) -> Result<(), ParamError> {
         settings.validate()?;
         if settings.self_collision != self.settings.self_collision {
-            self.self_contacts = self_contacts_for(&self.mesh, &self.seams, &settings, &self.model);
+            self.self_contacts =
+                self_contacts_for(&self.mesh, &self.seams, &settings, &self.model, &self.pinned);
         }
         self.settings = settings;
         Ok(())
@@ -613,7 +614,6 @@ impl Simulation {
         sc.detect(
             &self.x,
             &self.v,
-            self.model.masses(),
             &self.pinned,
             h,
             self.settings.integrator == Integrator::ImplicitEuler,
@@ -674,6 +674,20 @@ impl Simulation {
         }
     }
 
+    /// The cloth's edges passing through a body's triangles now, counted edge-triangle pair
+    /// by pair as [`Simulation::self_intersections`] counts the cloth's own (0 without
+    /// bodies).
+    pub fn body_intersections(&self) -> usize {
+        self.contacts.as_ref().map_or(0, |c| {
+            crate::contact::count_body_intersections(c.collider.as_ref(), self.time, &self.mesh, &self.x)
+        })
+    }
+
+    /// The particle pairs the seams given to the builder pull together.
+    pub fn seams(&self) -> &[[usize; 2]] {
+        &self.seams
+    }
+
     /// Pairs of the cloth within this of each other in the flat cloth are exempt from
     /// self-collision and from its measures, m: a few times the contact distance between
     /// layers.
@@ -720,6 +734,7 @@ fn self_contacts_for(
     seams: &[[usize; 2]],
     settings: &SolverSettings,
     model: &ForceModel,
+    pinned: &[bool],
 ) -> Option<SelfContacts> {
     let sc = &settings.self_collision;
     if !sc.enabled {
@@ -731,6 +746,8 @@ fn self_contacts_for(
     Some(SelfContacts::new(
         mesh,
         seams,
+        model.masses(),
+        pinned,
         sc,
         |i| fabrics[of[i]].thickness,
         |i| fabrics[of[i]].friction,

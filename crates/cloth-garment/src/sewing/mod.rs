@@ -85,6 +85,7 @@ pub fn sew(
         integrator: Integrator::ImplicitEuler,
         time_step: settings.time_step,
         gravity: Vec3::zeros(),
+        self_collision: settings.self_collision,
         ..SolverSettings::default()
     };
     let mut sim = SimulationBuilder::new(garment.mesh.clone(), fabrics[0].clone())

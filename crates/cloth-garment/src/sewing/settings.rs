@@ -1,6 +1,6 @@
 //! How the sewing stage runs.
 
-use cloth_core::{ParamError, RestCriteria, SolverSettings};
+use cloth_core::{ParamError, RestCriteria, SelfCollision, SolverSettings};
 use serde::{Deserialize, Serialize};
 
 /// Settings of the sewing stage.
@@ -23,6 +23,11 @@ pub struct SewingSettings {
     pub reach: f64,
     /// Air drag while sewing, kg/(m^2 s): panels glide into place instead of flying.
     pub drag: f64,
+    /// The cloth's collision with itself (a scene sets it for all its stages at once, in
+    /// its `[self_collision]` table). The particles each seam pulls together, and their
+    /// neighbours, are exempt until welded.
+    #[serde(skip)]
+    pub self_collision: SelfCollision,
 }
 
 impl Default for SewingSettings {
@@ -35,6 +40,7 @@ impl Default for SewingSettings {
             ramp_time: 0.2,
             reach: 0.0005,
             drag: 5.0,
+            self_collision: SelfCollision::default(),
         }
     }
 }
@@ -59,7 +65,8 @@ impl SewingSettings {
             self.drag,
             "a drag coefficient >= 0 kg/(m^2 s)",
         )?;
-        ParamError::check(self.max_steps > 0, "sewing.max_steps", 0.0, "at least one step")
+        ParamError::check(self.max_steps > 0, "sewing.max_steps", 0.0, "at least one step")?;
+        self.self_collision.validate()
     }
 }
 
@@ -81,6 +88,9 @@ pub struct DrapeSettings {
     /// carry no damping, and a hanging skirt then sways for seconds; at rest drag does
     /// nothing, so it only shortens the way there.
     pub drag: f64,
+    /// The cloth's collision with itself (a scene sets it for all its stages at once).
+    #[serde(skip)]
+    pub self_collision: SelfCollision,
 }
 
 impl Default for DrapeSettings {
@@ -91,6 +101,7 @@ impl Default for DrapeSettings {
             consecutive_steps: 10,
             max_steps: 3000,
             drag: 0.5,
+            self_collision: SelfCollision::default(),
         }
     }
 }
@@ -114,12 +125,15 @@ impl DrapeSettings {
             "drape.drag",
             self.drag,
             "a drag coefficient >= 0 kg/(m^2 s)",
-        )
+        )?;
+        self.self_collision.validate()
     }
-    /// The solver settings: implicit Euler at the time step, gravity on, otherwise default.
+    /// The solver settings: implicit Euler at the time step, gravity on, the
+    /// self-collision, otherwise default.
     pub fn solver(&self) -> SolverSettings {
         SolverSettings {
             time_step: self.time_step,
+            self_collision: self.self_collision,
             ..SolverSettings::default()
         }
     }
