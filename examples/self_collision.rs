@@ -48,7 +48,7 @@ fn main() {
                 closest = (d, s.step);
             }
         }
-        if s.step % 10 == 0 || crossing.count > 0 || s.self_unresolved > 0 || std::env::var("ALL").is_ok() {
+        if s.step % 10 == 0 || crossing.count > 0 || s.self_unresolved > 0 {
             println!(
                 "step {:4}: contacts {:5} impacts {:4} zone {:4} frozen {:3} unresolved {:2} | cg {:4} | {:6.1} ms (self {:5.1}) | max speed {:.3} | intersections {} {:?}",
                 s.step,
@@ -79,67 +79,9 @@ fn main() {
         start.elapsed().as_secs_f64(),
         scene.bodies.deepest_inside(sim.time(), sim.positions()).0
     );
-    closest_pair(&sim);
     std::fs::create_dir_all(&out).ok();
     let path = out.join(format!("{name}.obj"));
     if let Err(e) = write_cloth_obj(&path, sim.positions(), sim.mesh().triangles()) {
         eprintln!("{}: {e}", path.display());
-    }
-}
-
-#[allow(dead_code)]
-fn closest_pair(sim: &cloth::Simulation) {
-    use cloth::self_contact::geometry::closest_on_triangle;
-    let x = sim.positions();
-    let modes: Vec<_> = sim.contact_modes().collect();
-    let mut best = (f64::INFINITY, 0, 0, [0.0; 3]);
-    for (p, xp) in x.iter().enumerate() {
-        for (t, tri) in sim.mesh().triangles().iter().enumerate() {
-            if tri.contains(&p) {
-                continue;
-            }
-            let [a, b, c] = tri.map(|i| x[i]);
-            if (xp - a).norm() > 0.01 {
-                continue;
-            }
-            let w = closest_on_triangle(xp, &a, &b, &c);
-            let d = (xp - (w[0] * a + w[1] * b + w[2] * c)).norm();
-            if d < best.0 {
-                best = (d, p, t, w);
-            }
-        }
-    }
-    let tri = sim.mesh().triangles()[best.2];
-    contacts_of(sim, best.1);
-    println!(
-        "closest: particle {} ({:?}) to triangle {:?} ({:?}) at {:.4} mm, weights {:?}",
-        best.1,
-        modes[best.1],
-        tri,
-        tri.map(|i| modes[i]),
-        best.0 * 1e3,
-        best.3
-    );
-}
-
-#[allow(dead_code)]
-fn contacts_of(sim: &cloth::Simulation, p: usize) {
-    let x = sim.positions();
-    for c in sim.self_contacts() {
-        if let Some(k) = c.particles.iter().position(|&i| i as usize == p) {
-            let g: cloth::Vec3 = (0..4)
-                .map(|j| c.frame.weights[j] * x[c.particles[j] as usize])
-                .sum();
-            println!(
-                "  contact {:?} w {:?} (p at {k}) n {:.3?} start gap {:.4} mm now n.g {:.4} |g| {:.4} mm distance {:.3}",
-                c.particles,
-                c.frame.weights.map(|w| (w * 100.0).round() / 100.0),
-                c.frame.normal.as_slice(),
-                c.gap * 1e3,
-                c.frame.normal.dot(&g) * 1e3,
-                g.norm() * 1e3,
-                c.distance * 1e3
-            );
-        }
     }
 }

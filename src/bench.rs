@@ -4,7 +4,9 @@
 use crate::garment::sewing::{drape_simulation, sew};
 use crate::scene_file::{ClothSpec, PreparedCloth, SceneFile};
 use crate::scenes::SphereDrop;
-use cloth_core::{Fabric, GridBuilder, Pin, Simulation, SimulationBuilder, SolverSettings, Vec3};
+use cloth_core::{
+    Fabric, GridBuilder, Pin, SelfCollision, Simulation, SimulationBuilder, SolverSettings, Vec3,
+};
 use serde::Serialize;
 use std::ops::ControlFlow;
 use std::path::Path;
@@ -19,12 +21,17 @@ pub struct BenchResult {
     /// Wall time per step, ms.
     pub median_ms_per_step: f64,
     pub median_cg_iterations: usize,
+    /// Medians over the steps of the cloth's contacts with itself and of the wall time in
+    /// self-collision, ms.
+    pub median_self_contacts: usize,
+    pub median_self_collision_ms: f64,
 }
 
 /// Runs the standard scenes for `steps` steps each: the source's 110 x 110 hanging sheet,
 /// a 60 x 60 sheet dropped on a sphere, and the basic dress draping on the default
-/// mannequin at about 12,000 particles (timed after it is sewn). `quick` runs them at
-/// about a tenth of the particles, for a smoke test.
+/// mannequin at about 12,000 particles (timed after it is sewn), with self-collision (as
+/// everywhere, by default) and without. `quick` runs them at about a tenth of the
+/// particles, for a smoke test.
 pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>, String> {
     let e = |e: &dyn std::fmt::Display| e.to_string();
     let mut results = Vec::new();
@@ -69,27 +76,44 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
         |_, _, _| ControlFlow::Continue(()),
     )
     .map_err(|x| e(&x))?;
-    let sim = drape_simulation(&sewn, bodies, SolverSettings::default(), 0.0).map_err(|x| e(&x))?;
-    results.push(time_steps("dress_drape", sim, steps)?);
+    // Draped with self-collision and without, from the same sewn dress.
+    for (name, self_collision) in [
+        ("dress_drape", SelfCollision::default()),
+        ("dress_drape_without_self_collision", SelfCollision::off()),
+    ] {
+        let solver = SolverSettings {
+            self_collision,
+            ..SolverSettings::default()
+        };
+        let sim = drape_simulation(&sewn, bodies.clone(), solver, 0.0).map_err(|x| e(&x))?;
+        results.push(time_steps(name, sim, steps)?);
+    }
     Ok(results)
 }
 
 fn time_steps(name: &'static str, mut sim: Simulation, steps: usize) -> Result<BenchResult, String> {
     let (mut ms, mut cg) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
+    let (mut contacts, mut self_ms) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
     for _ in 0..steps {
         let start = Instant::now();
         let stats = sim.step().map_err(|x| format!("{name}: {x}"))?;
         ms.push(start.elapsed().as_secs_f64() * 1e3);
         cg.push(stats.cg_iterations);
+        contacts.push(stats.self_contacts);
+        self_ms.push(stats.self_collision_seconds * 1e3);
     }
     ms.sort_by(f64::total_cmp);
+    self_ms.sort_by(f64::total_cmp);
     cg.sort_unstable();
+    contacts.sort_unstable();
     Ok(BenchResult {
         name,
         particles: sim.mesh().vertex_count(),
         steps,
         median_ms_per_step: ms.get(steps / 2).copied().unwrap_or(0.0),
         median_cg_iterations: cg.get(steps / 2).copied().unwrap_or(0),
+        median_self_contacts: contacts.get(steps / 2).copied().unwrap_or(0),
+        median_self_collision_ms: self_ms.get(steps / 2).copied().unwrap_or(0.0),
     })
 }
 

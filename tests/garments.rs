@@ -1,6 +1,7 @@
 //! Acceptance of garments sewn from the shipped patterns onto the default mannequin: the
-//! seams close, the garment comes to rest on the body, nothing is inside it, the stretch
-//! at rest is small, and nothing slides off.
+//! seams close, the garment comes to rest on the body, nothing is inside it, it passes
+//! through neither itself nor the body (self-collision on, as by default), the stretch at
+//! rest is small, and nothing slides off.
 
 use cloth::collide::{Bodies, SurfaceOptions, TriSurface};
 use cloth::garment::mannequin::{Landmarks, Mannequin, Measurements};
@@ -20,6 +21,10 @@ struct Dressed {
     landmarks: Landmarks,
     depth_inside: f64,
     strain: StrainReport,
+    /// Edge-triangle pairs passing through each other at rest: of the cloth, and of the
+    /// cloth and the body.
+    self_intersections: usize,
+    body_intersections: usize,
 }
 
 /// Where the body comes from: the generator, or a shipped OBJ file read as any body is.
@@ -70,8 +75,9 @@ fn dress(pattern: &str, body: Body) -> Dressed {
     let sim = &draped.simulation;
     let (depth_inside, _) = bodies.deepest_inside(sim.time(), sim.positions());
     let strain = StrainReport::new(sim.mesh(), sim.positions());
+    let (self_intersections, body_intersections) = (sim.self_intersections().count, sim.body_intersections());
     println!(
-        "{}: {} particles ({} welded), sewn in {} steps (gap {:.2} mm), at rest after {} steps; max warp {:.2} %, weft {:.2} %",
+        "{}: {} particles ({} welded), sewn in {} steps (gap {:.2} mm), at rest after {} steps; max warp {:.2} %, weft {:.2} %; {} self and {} body intersections",
         path,
         garment.mesh.vertex_count(),
         sim.mesh().vertex_count(),
@@ -79,7 +85,9 @@ fn dress(pattern: &str, body: Body) -> Dressed {
         1e3 * sewn.report.max_gap,
         draped.outcome.steps,
         strain.max_warp,
-        strain.max_weft
+        strain.max_weft,
+        self_intersections,
+        body_intersections,
     );
     Dressed {
         sewn,
@@ -87,6 +95,8 @@ fn dress(pattern: &str, body: Body) -> Dressed {
         landmarks,
         depth_inside,
         strain,
+        self_intersections,
+        body_intersections,
     }
 }
 
@@ -95,6 +105,8 @@ fn check_at_rest(d: &Dressed) {
     assert!(d.sewn.report.max_gap < 1e-3);
     assert_eq!(d.draped.outcome.reason, StopReason::AtRest);
     assert_eq!(d.depth_inside, 0.0, "a particle is inside the body");
+    assert_eq!(d.self_intersections, 0, "the garment passes through itself");
+    assert_eq!(d.body_intersections, 0, "the garment passes through the body");
     assert!(
         d.strain.max_warp < 3.0 && d.strain.max_weft < 3.0,
         "{:?}",

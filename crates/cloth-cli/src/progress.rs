@@ -125,7 +125,8 @@ impl RunObserver for Progress {
         if self.verbosity == Verbosity::Verbose {
             self.say(&format!(
                 "{} step {}: t {:.4} s, {} CG iterations (residual {:.1e}), max speed {:.2e} m/s, \
-                 {} contacts, assembly {:.1} ms, solve {:.1} ms, contact {:.1} ms",
+                 {} contacts, {} self-contacts, {} self-impacts, assembly {:.1} ms, solve {:.1} ms, \
+                 contact {:.1} ms, self-collision {:.1} ms",
                 self.stage,
                 stats.step,
                 stats.time,
@@ -133,9 +134,12 @@ impl RunObserver for Progress {
                 stats.cg_residual,
                 stats.max_speed,
                 stats.contacts,
+                stats.self_contacts,
+                stats.self_impacts + stats.self_zone_particles,
                 1e3 * stats.assembly_seconds,
                 1e3 * stats.solve_seconds,
                 1e3 * stats.contact_seconds,
+                1e3 * stats.self_collision_seconds,
             ));
         }
         match &self.bar {

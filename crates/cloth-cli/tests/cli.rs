@@ -443,7 +443,15 @@ fn bench_prints_json_for_the_standard_scenes() {
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let scenes = json["scenes"].as_array().unwrap();
     let names: Vec<&str> = scenes.iter().map(|s| s["name"].as_str().unwrap()).collect();
-    assert_eq!(names, ["hanging_sheet", "sheet_on_sphere", "dress_drape"]);
+    assert_eq!(
+        names,
+        [
+            "hanging_sheet",
+            "sheet_on_sphere",
+            "dress_drape",
+            "dress_drape_without_self_collision"
+        ]
+    );
     for s in scenes {
         assert_eq!(s["steps"], 3);
         assert!(s["particles"].as_u64().unwrap() > 100);

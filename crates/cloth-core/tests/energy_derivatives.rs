@@ -449,7 +449,8 @@ fn repulsion_and_friction_between_layers_match_finite_differences() {
         stiffness: 150.0,
         distance: 0.05,
     };
-    let knee = law.distance * (RepulsionLaw::LEAST_GAP + 0.01 * (1.0 - RepulsionLaw::LEAST_GAP));
+    let knee = law.distance
+        * (RepulsionLaw::LEAST_GAP + RepulsionLaw::LINEAR_BELOW * (1.0 - RepulsionLaw::LEAST_GAP));
     for k in 0..60 {
         let (_, t) = random_triangle(&mut rng);
         let t = t.map(|p| 2.0 * p);
@@ -462,8 +463,8 @@ fn repulsion_and_friction_between_layers_match_finite_differences() {
         let foot = b[0] * t[0] + b[1] * t[1] + b[2] * t[2];
         // Gaps inside the knee, hardening, near and beyond the distance.
         let gap = match k % 4 {
-            0 => rng.random_range(0.3..0.5) * law.distance,
-            1 => rng.random_range(0.55..0.9) * law.distance,
+            0 => rng.random_range(0.3..0.6) * law.distance,
+            1 => rng.random_range(0.65..0.9) * law.distance,
             2 => rng.random_range(0.9..1.0) * law.distance,
             _ => rng.random_range(1.0..1.8) * law.distance,
         };
@@ -525,17 +526,21 @@ fn the_repulsion_law_is_a_spring_at_the_distance_that_hardens_without_bound() {
     let (e, f, s) = law.at(d);
     assert!(e.abs() < 1e-18 && f.abs() < 1e-15, "{e} {f}");
     assert!((s - law.stiffness).abs() < 1e-9 * law.stiffness);
-    // Pressed to three quarters, the force is twice a linear spring's; near the least gap
-    // (half the distance) it grows like 1 / (g - d / 2).
+    // Pressed to three quarters, the force is twice a linear spring's; towards the least
+    // gap (half the distance) it grows like 1 / (g - d / 2).
     let (_, f75, _) = law.at(0.75 * d);
     assert!((f75 / (law.stiffness * 0.25 * d) - 2.0).abs() < 1e-9, "{f75}");
-    let (_, f51, _) = law.at(0.51 * d);
-    let (_, f52, _) = law.at(0.52 * d);
-    assert!((f51 / f52 - (0.02 * 0.49) / (0.01 * 0.48)).abs() < 1e-9);
+    let (_, f65, _) = law.at(0.65 * d);
+    let (_, f70, _) = law.at(0.70 * d);
+    assert!((f65 / f70 - (0.35 * 0.2) / (0.15 * 0.3)).abs() < 1e-9);
+    // Its stiffness at the knee is sixteen times the spring's, and stays so below.
+    let (_, _, s_knee) = law.at(d * 0.625);
+    assert!((s_knee / law.stiffness - 16.0).abs() < 1e-9);
+    assert_eq!(law.at(0.3 * d).2, s_knee);
     // Beyond the distance it pulls (the contact is one spring within a step), and below the
     // knee it goes on straight: energy, force and stiffness continuous there.
     assert!(law.at(1.2 * d).1 < 0.0);
-    let knee = d * (RepulsionLaw::LEAST_GAP + 0.01 * (1.0 - RepulsionLaw::LEAST_GAP));
+    let knee = d * (RepulsionLaw::LEAST_GAP + RepulsionLaw::LINEAR_BELOW * (1.0 - RepulsionLaw::LEAST_GAP));
     let (above, below) = (law.at(knee + 1e-12), law.at(knee - 1e-12));
     for (a, b) in [(above.0, below.0), (above.1, below.1), (above.2, below.2)] {
         assert!((a - b).abs() <= 1e-6 * a.abs().max(1e-30), "{a} vs {b}");

@@ -145,16 +145,25 @@ impl BlockSparse {
     ) {
         debug_assert_eq!(x.len(), self.n());
         debug_assert_eq!(y.len(), self.n());
-        for_each_entry(y, parallel, |r, yr| *yr = f(r, self.row_product(r, x)));
+        if self.transient.is_empty() {
+            for_each_entry(y, parallel, |r, yr| *yr = f(r, self.fixed_row_product(r, x)));
+        } else {
+            for_each_entry(y, parallel, |r, yr| *yr = f(r, self.row_product(r, x)));
+        }
     }
 
     /// `(A x)_r`, the transient couplings included.
     pub fn row_product(&self, r: usize, x: &[Vec3]) -> Vec3 {
+        self.fixed_row_product(r, x) + self.transient.row_product(r, x)
+    }
+
+    #[inline]
+    fn fixed_row_product(&self, r: usize, x: &[Vec3]) -> Vec3 {
         let mut s = Vec3::zeros();
         for slot in self.row(r) {
             s += self.blocks[slot] * x[self.cols[slot] as usize];
         }
-        s + self.transient.row_product(r, x)
+        s
     }
 
     /// Diagonal block `r` of a block diagonal that bounds the matrix's transient couplings

@@ -59,13 +59,18 @@ impl Aabb {
 }
 
 /// A node: a leaf holds `count > 0` primitives from `first` in the tree's order; an inner
-/// node's children are the next node and `right`.
+/// node's children are the next node and `right`. Either way its subtree's primitives are
+/// the `span` from `first`.
 #[derive(Debug, Clone, Copy)]
 struct Node {
     first: u32,
     count: u32,
     right: u32,
+    span: u32,
 }
+
+/// Node pairs a traversal keeps on its stack at most.
+const PAIR_STACK: usize = 4 * MAX_DEPTH;
 
 /// The hierarchy of `len` primitives: its shape, fixed at build, and the boxes of its
 /// nodes, set by [`Bvh::refit`].
@@ -106,6 +111,157 @@ impl Bvh {
         }
     }
 
+    /// Number of nodes; the root is node 0.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn node_box(&self, k: usize) -> &Aabb {
+        &self.boxes[k]
+    }
+
+    /// The primitives under node `k`.
+    pub fn subtree(&self, k: usize) -> &[u32] {
+        let n = self.nodes[k];
+        &self.order[n.first as usize..(n.first + n.span) as usize]
+    }
+
+    pub fn is_leaf(&self, k: usize) -> bool {
+        self.nodes[k].count > 0
+    }
+
+    /// The children of an inner node.
+    fn children(&self, k: usize) -> Option<(usize, usize)> {
+        let n = self.nodes[k];
+        (n.count == 0).then_some((k + 1, n.right as usize))
+    }
+
+    /// Sets a value for every node from its primitives', `leaf(items)` for a leaf and
+    /// `merge(left, right)` for an inner node, into `out` (one per node).
+    pub fn fold_up<T: Copy>(
+        &self,
+        out: &mut Vec<T>,
+        leaf: impl Fn(&[u32]) -> T,
+        merge: impl Fn(&T, &T) -> T,
+    ) {
+        if out.len() != self.nodes.len() {
+            out.clear();
+            out.extend((0..self.nodes.len()).map(|k| leaf(self.subtree(k))));
+        }
+        for k in (0..self.nodes.len()).rev() {
+            out[k] = match self.children(k) {
+                None => leaf(self.subtree(k)),
+                Some((l, r)) => merge(&out[l], &out[r]),
+            };
+        }
+    }
+
+    /// The pairs of nodes `(a, b)` (`a == b` for a node against itself) that `keep` accepts,
+    /// from the root against itself down, a level at a time, until there are `want` of them
+    /// or none left to split: the tasks of a parallel traversal (see [`Bvh::leaf_pairs`]).
+    /// `scratch` holds a level while the next is made.
+    pub fn pair_tasks(
+        &self,
+        keep: impl Fn(usize, usize) -> bool,
+        want: usize,
+        tasks: &mut Vec<(u32, u32)>,
+        scratch: &mut Vec<(u32, u32)>,
+    ) {
+        tasks.clear();
+        if self.nodes.is_empty() || !keep(0, 0) {
+            return;
+        }
+        tasks.push((0, 0));
+        while tasks.len() < want {
+            std::mem::swap(tasks, scratch);
+            tasks.clear();
+            let mut split = false;
+            for &(a, b) in scratch.iter() {
+                let (a, b) = (a as usize, b as usize);
+                if self.split_pair(a, b, &keep, |x, y| tasks.push((x as u32, y as u32))) {
+                    split = true;
+                } else {
+                    tasks.push((a as u32, b as u32));
+                }
+            }
+            if !split {
+                break;
+            }
+        }
+    }
+
+    /// The child pairs of `(a, b)` that `keep` accepts, to `push`; false for two leaves
+    /// (nothing to split).
+    fn split_pair(
+        &self,
+        a: usize,
+        b: usize,
+        keep: &impl Fn(usize, usize) -> bool,
+        mut push: impl FnMut(usize, usize),
+    ) -> bool {
+        let mut offer = |x: usize, y: usize| {
+            if keep(x, y) {
+                push(x, y);
+            }
+        };
+        if a == b {
+            let Some((l, r)) = self.children(a) else {
+                return false;
+            };
+            offer(l, l);
+            offer(r, r);
+            offer(l, r);
+            return true;
+        }
+        let split_a = match (self.children(a), self.children(b)) {
+            (None, None) => return false,
+            (Some(_), None) => true,
+            (None, Some(_)) => false,
+            (Some(_), Some(_)) => self.nodes[a].span >= self.nodes[b].span,
+        };
+        if split_a {
+            let (l, r) = self.children(a).expect("inner");
+            offer(l, b);
+            offer(r, b);
+        } else {
+            let (l, r) = self.children(b).expect("inner");
+            offer(a, l);
+            offer(a, r);
+        }
+        true
+    }
+
+    /// Every pair of leaves under the node pair `task` that `keep` accepts (and every pair
+    /// above them), depth first: `visit(primitives of a, primitives of b, a == b)`.
+    pub fn leaf_pairs(
+        &self,
+        task: (u32, u32),
+        keep: impl Fn(usize, usize) -> bool,
+        mut visit: impl FnMut(&[u32], &[u32], bool),
+    ) {
+        let mut stack = [(0u32, 0u32); PAIR_STACK];
+        stack[0] = task;
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (a, b) = (stack[top].0 as usize, stack[top].1 as usize);
+            let mut children = [(0u32, 0u32); 3];
+            let mut count = 0;
+            let inner = self.split_pair(a, b, &keep, |x, y| {
+                children[count] = (x as u32, y as u32);
+                count += 1;
+            });
+            if !inner {
+                visit(self.subtree(a), self.subtree(b), a == b);
+                continue;
+            }
+            // A stack this deep would need a tree far deeper than median splits build.
+            assert!(top + count <= PAIR_STACK, "bounding volume hierarchy too deep");
+            stack[top..top + count].copy_from_slice(&children[..count]);
+            top += count;
+        }
+    }
+
     /// Calls `visit` with every primitive whose leaf's box overlaps `query` (a superset
     /// of the primitives whose own boxes do).
     pub fn query(&self, query: &Aabb, mut visit: impl FnMut(usize)) {
@@ -142,6 +298,7 @@ fn split(centres: &[Vec3], order: &mut [u32], first: usize, nodes: &mut Vec<Node
         first: first as u32,
         count: order.len() as u32,
         right: 0,
+        span: order.len() as u32,
     });
     if order.len() <= LEAF_SIZE {
         return;

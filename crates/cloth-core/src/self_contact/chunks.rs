@@ -6,7 +6,7 @@
 use rayon::prelude::*;
 
 /// Items searched per chunk.
-const ITEMS_PER_CHUNK: usize = 256;
+const ITEMS_PER_CHUNK: usize = 16;
 
 #[derive(Debug, Clone)]
 pub(crate) struct ChunkedSearch<T> {
@@ -22,21 +22,21 @@ impl<T> Default for ChunkedSearch<T> {
 impl<T: Send + Copy> ChunkedSearch<T> {
     /// Calls `search(item, found)` for every item in `items`, in parallel when `parallel`,
     /// and writes what they found, in item order, into `out` (cleared first).
-    pub fn run(
+    pub fn run<I: Copy + Sync>(
         &mut self,
-        items: &[u32],
+        items: &[I],
         parallel: bool,
         out: &mut Vec<T>,
-        search: impl Fn(usize, &mut Vec<T>) + Sync,
+        search: impl Fn(I, &mut Vec<T>) + Sync,
     ) {
         let chunks = items.len().div_ceil(ITEMS_PER_CHUNK);
         if self.buffers.len() < chunks {
             self.buffers.resize_with(chunks, Vec::new);
         }
-        let run = |(chunk, buffer): (&[u32], &mut Vec<T>)| {
+        let run = |(chunk, buffer): (&[I], &mut Vec<T>)| {
             buffer.clear();
             for &i in chunk {
-                search(i as usize, buffer);
+                search(i, buffer);
             }
         };
         let buffers = &mut self.buffers[..chunks];

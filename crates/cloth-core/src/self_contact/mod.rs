@@ -23,11 +23,13 @@
 mod bvh;
 mod ccd;
 mod chunks;
+mod cone;
 pub mod geometry;
 mod intersections;
 mod proximity;
 mod response;
 mod settings;
+mod surface;
 mod topology;
 
 pub use intersections::{closest_self_approach, count_self_intersections, Intersections};
@@ -39,11 +41,13 @@ use crate::energy::Local;
 use crate::linalg::BlockSparse;
 use crate::mesh::ClothMesh;
 use crate::{Mat3, Vec3};
-use bvh::{Aabb, Bvh};
+use bvh::Aabb;
 use ccd::Impact;
 use chunks::ChunkedSearch;
+use cone::Cone;
 use proximity::Cloth;
 pub use proximity::Contact;
+use surface::SurfaceTree;
 use topology::Topology;
 
 /// Impulse passes over the impacts before the remaining ones are merged into zones.
@@ -63,22 +67,24 @@ pub(crate) fn rest_radius(distance: f64) -> f64 {
 /// Default repulsion stiffness over the stiffest fabric's membrane stiffness.
 const STIFFNESS_FRACTION: f64 = 0.1;
 
-/// What a search item is: particles `0..n`, then the triangles, then the edges.
-enum Item {
-    Particle(usize),
-    Triangle(usize),
-    Edge(usize),
+/// The particles triangle `s` speaks for, each against triangle `t`: each particle of the
+/// cloth is searched against each triangle once, from the triangle that has it.
+fn owned_particles(topology: &Topology, s: usize, t: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let owned = topology.owned(s);
+    (0..3)
+        .filter(move |k| owned & (1 << k) != 0)
+        .map(move |k| (topology.triangles[s][k] as usize, t))
 }
 
-/// The kind of search item `item` of a cloth of `n` particles and `t` triangles.
-fn item_kind(item: usize, n: usize, t: usize) -> Item {
-    if item < n {
-        Item::Particle(item)
-    } else if item < n + t {
-        Item::Triangle(item - n)
-    } else {
-        Item::Edge(item - n - t)
-    }
+/// The pairs of an edge triangle `s` speaks for and one `t` does (lower edge first).
+fn owned_edge_pairs(topology: &Topology, s: usize, t: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let (mine, theirs) = (topology.owned(s), topology.owned(t));
+    (0..3).filter(move |k| mine & (8 << k) != 0).flat_map(move |k| {
+        (0..3).filter(move |m| theirs & (8 << m) != 0).map(move |m| {
+            let (e, f) = (topology.triangle_edges[s][k], topology.triangle_edges[t][m]);
+            (e.min(f) as usize, e.max(f) as usize)
+        })
+    })
 }
 
 /// The contacts of each of `n` particles, by counting sort: `rows[i]..rows[i + 1]` of
@@ -131,9 +137,7 @@ pub(crate) struct SelfContacts {
     reach: f64,
     /// Within this of each other, primitives passing through one plane touch, m.
     touch: f64,
-    triangle_tree: Bvh,
-    edge_tree: Bvh,
-    vertex_tree: Bvh,
+    surface: SurfaceTree,
     /// The step's contacts, each one's friction drag (N s/m) and the stiffness of its
     /// repulsion at the start of the step (N/m).
     pub contacts: Vec<Contact>,
@@ -142,8 +146,6 @@ pub(crate) struct SelfContacts {
     /// The contacts of each particle, (contact, corner), in compressed rows.
     by_particle: Vec<u32>,
     by_particle_list: Vec<(u32, u8)>,
-    /// Every particle and edge: the items of a full search (see [`item_kind`]).
-    all_items: Vec<u32>,
     contact_search: ChunkedSearch<Contact>,
     impact_search: ChunkedSearch<Impact>,
     response: response::Scratch,
@@ -174,20 +176,12 @@ impl SelfContacts {
             .collect();
         let reach = 2.0 * half_thickness.iter().copied().fold(0.0, f64::max);
         let touch = 0.02 * 2.0 * half_thickness.iter().copied().fold(f64::INFINITY, f64::min);
-        let x = mesh.positions();
-        let centre = |ids: &[u32]| ids.iter().map(|&i| x[i as usize]).sum::<Vec3>() / ids.len() as f64;
-        let triangle_tree = Bvh::new(&topology.triangles.iter().map(|t| centre(t)).collect::<Vec<_>>());
-        let edge_tree = Bvh::new(&topology.edges.iter().map(|e| centre(e)).collect::<Vec<_>>());
-        let vertex_tree = Bvh::new(x);
-        let t = topology.triangles.len();
-        let all_items = (0..n as u32)
-            .chain((n + t) as u32..(n + t + topology.edges.len()) as u32)
-            .collect();
+        let surface = SurfaceTree::new(&topology, mesh.positions());
         Self {
             stiffness: settings
                 .stiffness
                 .unwrap_or(STIFFNESS_FRACTION * membrane_stiffness),
-            response: response::Scratch::new(n, topology.triangles.len(), topology.edges.len()),
+            response: response::Scratch::new(n),
             topology,
             half_thickness,
             inv_mass: masses
@@ -200,15 +194,12 @@ impl SelfContacts {
             braked: Vec::new(),
             reach,
             touch,
-            triangle_tree,
-            edge_tree,
-            vertex_tree,
+            surface,
             contacts: Vec::new(),
             drag: Vec::new(),
             normal_stiffness: Vec::new(),
             by_particle: Vec::new(),
             by_particle_list: Vec::new(),
-            all_items,
             contact_search: ChunkedSearch::default(),
             impact_search: ChunkedSearch::default(),
         }
@@ -227,10 +218,17 @@ impl SelfContacts {
     ) {
         let step = implicit.then_some(h);
         let topo = &self.topology;
-        self.triangle_tree
-            .refit(|t| Aabb::of(topo.triangles[t].map(|i| x[i as usize])));
-        self.edge_tree
-            .refit(|e| Aabb::of(topo.edges[e].map(|i| x[i as usize])));
+        // Two triangles' boxes, each grown by half the reach, overlap where they may be
+        // within it.
+        let reach = (1.0 + proximity::LOOK_AHEAD) * self.reach;
+        self.surface.refit(
+            |t| Aabb::of(topo.triangles[t].map(|i| x[i as usize])).inflated(0.5 * reach),
+            |t| {
+                let [a, b, c] = topo.triangles[t].map(|i| x[i as usize]);
+                Cone::along((b - a).cross(&(c - a)))
+            },
+        );
+        self.surface.plan(false, topo);
         let cloth = Cloth {
             topology: topo,
             x,
@@ -240,19 +238,23 @@ impl SelfContacts {
             half_thickness: &self.half_thickness,
             friction: &self.friction,
         };
-        let (n, t) = (topo.particles(), topo.triangles.len());
-        let reach = (1.0 + proximity::LOOK_AHEAD) * self.reach;
-        let (triangles, edges) = (&self.triangle_tree, &self.edge_tree);
-        self.contact_search.run(
-            &self.all_items,
-            parallel,
-            &mut self.contacts,
-            |item, found| match item_kind(item, n, t) {
-                Item::Particle(i) => cloth.particle_triangle(i, triangles, reach, found),
-                Item::Edge(e) => cloth.edge_edge(e, edges, reach, found),
-                Item::Triangle(_) => {}
-            },
-        );
+        let surface = &self.surface;
+        self.contact_search
+            .run(&surface.tasks, parallel, &mut self.contacts, |task, found| {
+                surface.triangle_pairs(task, false, topo, |s, t| {
+                    // A triangle's own particles and edges are exempt from it.
+                    if s == t {
+                        return;
+                    }
+                    for (p, t) in owned_particles(topo, s, t).chain(owned_particles(topo, t, s)) {
+                        cloth.particle_triangle(p, t, reach, found);
+                    }
+                    for (e, f) in owned_edge_pairs(topo, s, t) {
+                        cloth.edge_edge(e, f, reach, found);
+                    }
+                });
+            });
+        let n = topo.particles();
         index_by_particle(
             &self.contacts,
             n,

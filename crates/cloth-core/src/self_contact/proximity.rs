@@ -2,7 +2,7 @@
 //! contact distance at the start of a step, or closing in fast enough to come that close
 //! within it, each a [`Contact`] the step's solve holds at the distance.
 
-use super::bvh::{Aabb, Bvh};
+use super::bvh::Aabb;
 use super::geometry::{closest_on_segments, closest_on_triangle};
 use super::topology::Topology;
 use crate::energy::repulsion::ContactFrame;
@@ -37,9 +37,6 @@ pub const LOOK_AHEAD: f64 = 1.0;
 /// Least cosine between the normal of a contact beside a triangle's edge or corner and the
 /// triangle's own normal (15 degrees).
 const ACROSS_FACE: f64 = 0.966;
-/// Candidate triangles a particle's search keeps; beyond them every edge and corner
-/// contact stands (as near a surface folded many times over).
-const NEAR_TRIANGLES: usize = 32;
 
 /// What a proximity search needs of the cloth.
 pub(crate) struct Cloth<'a> {
@@ -101,110 +98,100 @@ impl Cloth<'_> {
         })
     }
 
-    /// Particle `p` against every triangle of `tree` (refitted to the triangles' boxes)
-    /// within `reach` (the largest distance a contact is looked for at). Where `p`'s
-    /// nearest point on a triangle is on its edge or corner, the contact stands only if no
-    /// triangle around that edge or corner has `p` over its face: over a smooth surface the
-    /// face's contact is the surface's, and the neighbours' would be ridges at every edge
-    /// that catch a layer sliding across them. Over a ridge or a border, the edge or corner
-    /// is the nearest surface, and the first triangle having it speaks for it.
-    pub fn particle_triangle(&self, p: usize, tree: &Bvh, reach: f64, found: &mut Vec<Contact>) {
-        let xp = self.x[p];
-        // The candidates and where p is nearest each (a few: p's box meets the triangles
-        // around a handful of particles).
-        let mut near = [(0u32, [0.0; 3]); NEAR_TRIANGLES];
-        let mut count = 0;
-        let mut overflow = false;
-        tree.query(&Aabb::point(&xp).inflated(reach), |t| {
-            if self.topology.vertex_triangle_exempt(p, t) {
-                return;
-            }
-            let [a, b, c] = self.topology.triangles[t].map(|i| self.x[i as usize]);
-            let w = closest_on_triangle(&xp, &a, &b, &c);
-            let q = w[0] * a + w[1] * b + w[2] * c;
-            if (xp - q).norm() >= reach {
-                return;
-            }
-            match near.get_mut(count) {
-                Some(slot) => *slot = (t as u32, w),
-                None => overflow = true,
-            }
-            count += 1;
-        });
-        let near = &near[..count.min(NEAR_TRIANGLES)];
-        let tris = &self.topology.triangles;
-        // Whether some candidate has p over its face (or, for a corner, over an edge too)
-        // among those having all of `feature`.
-        let covered = |feature: &[u32], edges_count: bool| {
-            near.iter().any(|(s, w)| {
-                let tri = tris[*s as usize];
-                let zeros = w.iter().filter(|&&x| x == 0.0).count();
-                feature.iter().all(|v| tri.contains(v))
-                    && (zeros == 0
-                        || (edges_count && zeros == 1 && {
-                            let k = w.iter().position(|&x| x == 0.0).expect("one zero");
-                            // The edge opposite corner k has the corner in `feature`.
-                            feature.iter().all(|v| *v != tri[k])
-                        }))
-            })
+    /// The triangles around `p`'s nearest point on triangle `t` (at barycentric `w`, on
+    /// an edge or a corner), other than `t`: one of them over whose face `p` lies, if any.
+    fn covered(&self, p: &Vec3, t: usize, w: &[f64; 3]) -> bool {
+        let tri = self.topology.triangles[t];
+        let face_of = |s: usize| {
+            let [a, b, c] = self.topology.triangles[s].map(|i| self.x[i as usize]);
+            closest_on_triangle(p, &a, &b, &c)
         };
-        for &(t, w) in near {
-            let tri = tris[t as usize];
-            let zeros = w.iter().filter(|&&x| x == 0.0).count();
-            let stands = match zeros {
-                0 => true,
-                1 => {
-                    let k = w.iter().position(|&x| x == 0.0).expect("one zero");
-                    let edge = [tri[(k + 1) % 3], tri[(k + 2) % 3]];
-                    overflow || !covered(&edge, false)
-                }
-                _ => {
-                    let k = w.iter().position(|&x| x != 0.0).unwrap_or(0);
-                    overflow || !covered(&[tri[k]], true)
-                }
-            };
-            if !(stands && self.topology.owns_point(t as usize, &w)) {
-                continue;
+        match w.iter().filter(|&&x| x == 0.0).count() {
+            1 => {
+                let k = w.iter().position(|&x| x == 0.0).expect("one zero");
+                self.topology
+                    .across(t, k)
+                    .is_some_and(|s| face_of(s).iter().all(|&x| x > 0.0))
             }
-            let particles = [p as u32, tri[0], tri[1], tri[2]];
-            let weights = [1.0, -w[0], -w[1], -w[2]];
-            let Some(contact) = self.contact(particles, weights) else {
-                continue;
-            };
-            // Beside an edge or a corner, a contact nearly across the face's plane is one; one
-            // slanting off it is a particle level with the border of the other layer, which
-            // it slides past and would be stopped by as by a wall, and a pair not yet in
-            // contact there is not landing on the layer.
-            if zeros > 0 {
-                let [a, b, c] = tri.map(|i| self.x[i as usize]);
-                let face = (b - a).cross(&(c - a)).normalize();
-                if face.dot(&contact.frame.normal).abs() < ACROSS_FACE || contact.gap >= contact.distance {
-                    continue;
-                }
+            _ => {
+                // At a corner: a triangle around it with p over its face, or beside one of
+                // its edges through the corner.
+                let k = w.iter().position(|&x| x != 0.0).unwrap_or(0);
+                let corner = tri[k];
+                self.topology.triangles_of(corner as usize).iter().any(|&s| {
+                    let s = s as usize;
+                    if s == t {
+                        return false;
+                    }
+                    let ws = face_of(s);
+                    let zeros = ws.iter().filter(|&&x| x == 0.0).count();
+                    let at = self.topology.triangles[s].iter().position(|&v| v == corner);
+                    zeros == 0
+                        || (zeros == 1
+                            && at.is_some_and(|at| {
+                                ws[at] != 0.0 && ws.iter().position(|&x| x == 0.0) != Some(at)
+                            }))
+                })
             }
-            found.push(contact);
         }
     }
 
-    /// Edge `e` against every later edge of `tree` (refitted to the edges' boxes) within
-    /// `reach`, where the nearest points are inside both edges: a nearest point at an end
-    /// is a particle's, which its triangles' contacts have.
-    pub fn edge_edge(&self, e: usize, tree: &Bvh, reach: f64, found: &mut Vec<Contact>) {
-        let [i, j] = self.topology.edges[e];
+    /// Particle `p` against triangle `t`, if within `reach`. Where `p`'s nearest point on
+    /// the triangle is on its edge or corner, the contact stands only if no triangle around
+    /// that edge or corner has `p` over its face: over a smooth surface the face's contact
+    /// is the surface's, and the neighbours' would be ridges at every edge that catch a
+    /// layer sliding across them. Over a ridge or a border, the edge or corner is the
+    /// nearest surface, and the first triangle having it speaks for it.
+    pub fn particle_triangle(&self, p: usize, t: usize, reach: f64, found: &mut Vec<Contact>) {
+        let xp = self.x[p];
+        let tri = self.topology.triangles[t];
+        let [a, b, c] = tri.map(|i| self.x[i as usize]);
+        if !Aabb::of([a, b, c]).overlaps(&Aabb::point(&xp).inflated(reach))
+            || self.topology.vertex_triangle_exempt(p, t)
+        {
+            return;
+        }
+        let w = closest_on_triangle(&xp, &a, &b, &c);
+        if (xp - (w[0] * a + w[1] * b + w[2] * c)).norm() >= reach {
+            return;
+        }
+        let zeros = w.iter().filter(|&&x| x == 0.0).count();
+        if zeros > 0 && (!self.topology.owns_point(t, &w) || self.covered(&xp, t, &w)) {
+            return;
+        }
+        let particles = [p as u32, tri[0], tri[1], tri[2]];
+        let Some(contact) = self.contact(particles, [1.0, -w[0], -w[1], -w[2]]) else {
+            return;
+        };
+        // Beside an edge or a corner, a contact nearly across the face's plane is one; one
+        // slanting off it is a particle level with the border of the other layer, which it
+        // slides past and would be stopped by as by a wall, and a pair not yet in contact
+        // there is not landing on the layer.
+        if zeros > 0 {
+            let face = (b - a).cross(&(c - a)).normalize();
+            if face.dot(&contact.frame.normal).abs() < ACROSS_FACE || contact.gap >= contact.distance {
+                return;
+            }
+        }
+        found.push(contact);
+    }
+
+    /// Edges `e` and `f` within `reach` of each other, where the nearest points are inside
+    /// both edges: a nearest point at an end is a particle's, which its triangles' contacts
+    /// have.
+    pub fn edge_edge(&self, e: usize, f: usize, reach: f64, found: &mut Vec<Contact>) {
+        let ([i, j], [k, l]) = (self.topology.edges[e], self.topology.edges[f]);
         let (p0, p1) = (self.x[i as usize], self.x[j as usize]);
-        tree.query(&Aabb::of([p0, p1]).inflated(reach), |f| {
-            if f <= e || self.topology.edge_edge_exempt(e, f) {
-                return;
-            }
-            let [k, l] = self.topology.edges[f];
-            let (q0, q1) = (self.x[k as usize], self.x[l as usize]);
-            let (s, t) = closest_on_segments(&p0, &p1, &q0, &q1);
-            if !(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0) {
-                return;
-            }
-            let particles = [i, j, k, l];
-            let weights = [1.0 - s, s, t - 1.0, -t];
-            found.extend(self.contact(particles, weights));
-        });
+        let (q0, q1) = (self.x[k as usize], self.x[l as usize]);
+        if !Aabb::of([q0, q1]).overlaps(&Aabb::of([p0, p1]).inflated(reach))
+            || self.topology.edge_edge_exempt(e, f)
+        {
+            return;
+        }
+        let (s, t) = closest_on_segments(&p0, &p1, &q0, &q1);
+        if !(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0) {
+            return;
+        }
+        found.extend(self.contact([i, j, k, l], [1.0 - s, s, t - 1.0, -t]));
     }
 }

@@ -4,7 +4,8 @@
 
 use super::bvh::Aabb;
 use super::ccd::{self, Impact, Paths};
-use super::{item_kind, Item, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
+use super::cone::Cone;
+use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
 use crate::Vec3;
 
 /// What the impact passes did in one step.
@@ -33,9 +34,6 @@ struct ZoneSum {
 #[derive(Debug, Clone)]
 pub(super) struct Scratch {
     dirty: Vec<bool>,
-    items: Vec<u32>,
-    triangle_marked: Vec<bool>,
-    edge_marked: Vec<bool>,
     impacts: Vec<Impact>,
     zone: Vec<u32>,
     zoned: Vec<u32>,
@@ -49,12 +47,9 @@ pub(super) struct Scratch {
 }
 
 impl Scratch {
-    pub fn new(n: usize, triangles: usize, edges: usize) -> Self {
+    pub fn new(n: usize) -> Self {
         Self {
             dirty: vec![false; n],
-            items: Vec::new(),
-            triangle_marked: vec![false; triangles],
-            edge_marked: vec![false; edges],
             impacts: Vec::new(),
             zone: Vec::new(),
             zoned: Vec::new(),
@@ -169,52 +164,10 @@ impl SelfContacts {
         count
     }
 
-    /// The impacts on the paths from `x0` to `x1`: of every primitive (`full`), or of
-    /// those with a dirty particle; with `closing`, pairs ending too close too.
+    /// The impacts on the paths from `x0` to `x1`: of every pair (`full`), or of the pairs
+    /// with a dirty particle; with `closing`, pairs ending too close too.
     fn find_impacts(&mut self, x0: &[Vec3], x1: &[Vec3], full: bool, closing: bool, parallel: bool) {
         let topo = &self.topology;
-        let swept = |i: u32| Aabb::of([x0[i as usize], x1[i as usize]]);
-        let over = |ids: &[u32]| ids.iter().fold(Aabb::empty(), |b, &i| b.union(&swept(i)));
-        self.vertex_tree.refit(|i| swept(i as u32));
-        self.triangle_tree.refit(|t| over(&topo.triangles[t]));
-        self.edge_tree.refit(|e| over(&topo.edges[e]));
-
-        let sc = &mut self.response;
-        let n = topo.particles();
-        let t_count = topo.triangles.len();
-        sc.items.clear();
-        if full {
-            sc.items.extend_from_slice(&self.all_items);
-        } else {
-            for i in 0..n {
-                if !sc.dirty[i] {
-                    continue;
-                }
-                sc.items.push(i as u32);
-                for &t in topo.triangles_of(i) {
-                    if !std::mem::replace(&mut sc.triangle_marked[t as usize], true) {
-                        sc.items.push((n + t as usize) as u32);
-                    }
-                }
-                for &e in topo.edges_of(i) {
-                    if !std::mem::replace(&mut sc.edge_marked[e as usize], true) {
-                        sc.items.push((n + t_count + e as usize) as u32);
-                    }
-                }
-            }
-            for &item in &sc.items {
-                let item = item as usize;
-                if item >= n + t_count {
-                    sc.edge_marked[item - n - t_count] = false;
-                } else if item >= n {
-                    sc.triangle_marked[item - n] = false;
-                }
-            }
-        }
-
-        let (vertex_tree, triangle_tree, edge_tree) =
-            (&self.vertex_tree, &self.triangle_tree, &self.edge_tree);
-        let dirty = &sc.dirty;
         let touch = self.touch;
         // Near enough to cross, or to end the step too close.
         let pad = if closing {
@@ -222,6 +175,24 @@ impl SelfContacts {
         } else {
             touch
         };
+        let swept = |i: u32| Aabb::of([x0[i as usize], x1[i as usize]]);
+        let over = |ids: &[u32]| ids.iter().fold(Aabb::empty(), |b, &i| b.union(&swept(i)));
+        self.surface.refit(
+            |t| over(&topo.triangles[t]).inflated(0.5 * pad),
+            |t| {
+                let normal = |x: &[Vec3]| {
+                    let [a, b, c] = topo.triangles[t].map(|i| x[i as usize]);
+                    Cone::along((b - a).cross(&(c - a)))
+                };
+                normal(x0).merge(&normal(x1))
+            },
+        );
+        let dirty = &self.response.dirty;
+        if !full {
+            self.surface
+                .mark(|t| topo.triangles[t].iter().any(|&i| dirty[i as usize]));
+        }
+        self.surface.plan(!full, topo);
         let half = &self.half_thickness;
         let distance =
             |p: [u32; 4]| move |w: &[f64; 4]| (0..4).map(|k| w[k].abs() * half[p[k] as usize]).sum::<f64>();
@@ -229,54 +200,46 @@ impl SelfContacts {
             start: p.map(|i| x0[i as usize]),
             end: p.map(|i| x1[i as usize]),
         };
-        let search = |item: usize, found: &mut Vec<Impact>| match item_kind(item, n, t_count) {
-            Item::Particle(i) => {
-                triangle_tree.query(&swept(i as u32).inflated(pad), |t| {
-                    if topo.vertex_triangle_exempt(i, t) {
-                        return;
-                    }
-                    let tri = topo.triangles[t];
-                    let p = [i as u32, tri[0], tri[1], tri[2]];
-                    found.extend(ccd::particle_triangle(
-                        p,
-                        &paths(p),
-                        touch,
-                        closing.then(|| distance(p)),
-                    ));
-                });
-            }
-            Item::Triangle(t) => {
-                let tri = topo.triangles[t];
-                vertex_tree.query(&over(&tri).inflated(pad), |i| {
-                    // A dirty particle tests itself against every triangle.
-                    if dirty[i] || topo.vertex_triangle_exempt(i, t) {
-                        return;
-                    }
-                    let p = [i as u32, tri[0], tri[1], tri[2]];
-                    found.extend(ccd::particle_triangle(
-                        p,
-                        &paths(p),
-                        touch,
-                        closing.then(|| distance(p)),
-                    ));
-                });
-            }
-            Item::Edge(e) => {
-                let edge = topo.edges[e];
-                edge_tree.query(&over(&edge).inflated(pad), |f| {
-                    let other = topo.edges[f];
-                    let other_dirty = dirty[other[0] as usize] || dirty[other[1] as usize];
-                    // Two dirty edges: the lower one tests the pair.
-                    if f == e || (other_dirty && f < e) || topo.edge_edge_exempt(e, f) {
-                        return;
-                    }
-                    let p = [edge[0], edge[1], other[0], other[1]];
-                    found.extend(ccd::edge_edge(p, &paths(p), touch, closing.then(|| distance(p))));
-                });
-            }
-        };
+        // In a pass after the first, only pairs with a particle moved since.
+        let fresh = |p: &[u32]| full || p.iter().any(|&i| dirty[i as usize]);
+        let surface = &self.surface;
+        let mut impacts = std::mem::take(&mut self.response.impacts);
         self.impact_search
-            .run(&sc.items, parallel, &mut sc.impacts, search);
+            .run(&surface.tasks, parallel, &mut impacts, |task, found| {
+                surface.triangle_pairs(task, !full, topo, |s, t| {
+                    if s == t {
+                        return;
+                    }
+                    for (i, t) in owned_particles(topo, s, t).chain(owned_particles(topo, t, s)) {
+                        let tri = topo.triangles[t];
+                        let p = [i as u32, tri[0], tri[1], tri[2]];
+                        if !fresh(&p)
+                            || !swept(i as u32).inflated(pad).overlaps(&over(&tri))
+                            || topo.vertex_triangle_exempt(i, t)
+                        {
+                            continue;
+                        }
+                        found.extend(ccd::particle_triangle(
+                            p,
+                            &paths(p),
+                            touch,
+                            closing.then(|| distance(p)),
+                        ));
+                    }
+                    for (e, f) in owned_edge_pairs(topo, s, t) {
+                        let (edge, other) = (topo.edges[e], topo.edges[f]);
+                        let p = [edge[0], edge[1], other[0], other[1]];
+                        if !fresh(&p)
+                            || !over(&edge).inflated(pad).overlaps(&over(&other))
+                            || topo.edge_edge_exempt(e, f)
+                        {
+                            continue;
+                        }
+                        found.extend(ccd::edge_edge(p, &paths(p), touch, closing.then(|| distance(p))));
+                    }
+                });
+            });
+        self.response.impacts = impacts;
     }
 
     /// One impact's inelastic impulse: the pair is moved back along the normal to its

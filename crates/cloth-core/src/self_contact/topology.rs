@@ -32,9 +32,12 @@ pub(crate) struct Topology {
     /// Per triangle, `OWNS_VERTEX << k` when it is the first triangle of vertex `k`, and
     /// `OWNS_EDGE << k` when it is the first of the edge opposite vertex `k`.
     owns: Vec<u8>,
-    /// The triangles and the edges of each particle, in compressed rows.
+    /// Per triangle, the edge opposite each corner, and the triangle across it (or
+    /// `u32::MAX` on a border).
+    pub triangle_edges: Vec<[u32; 3]>,
+    pub across: Vec<[u32; 3]>,
+    /// The triangles of each particle, in compressed rows.
     vertex_triangles: (Vec<u32>, Vec<u32>),
-    vertex_edges: (Vec<u32>, Vec<u32>),
     /// Material coordinates of each triangle's corners, and its chart: triangles joined
     /// across edges whose corners agree in material coordinates share one (a panel; a
     /// welded seam parts two).
@@ -111,7 +114,6 @@ impl Topology {
         }
         let neighbours = (start, list);
         let vertex_triangles = incidence(n, &triangles);
-        let vertex_edges = incidence(n, &edges);
         let owns = triangles
             .iter()
             .enumerate()
@@ -132,6 +134,27 @@ impl Topology {
                 bits
             })
             .collect();
+        let edge_index: std::collections::HashMap<[u32; 2], u32> =
+            edges.iter().enumerate().map(|(k, &e)| (e, k as u32)).collect();
+        let opposite = |tri: &[u32; 3], k: usize| {
+            let (a, b) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
+            [a.min(b), a.max(b)]
+        };
+        let triangle_edges: Vec<[u32; 3]> = triangles
+            .iter()
+            .map(|tri| std::array::from_fn(|k| edge_index[&opposite(tri, k)]))
+            .collect();
+        let mut across = vec![[u32::MAX; 3]; triangles.len()];
+        for h in mesh.hinges() {
+            let [s, t] = h.triangles;
+            let key = [h.edge[0].min(h.edge[1]) as u32, h.edge[0].max(h.edge[1]) as u32];
+            for (from, to) in [(s, t), (t, s)] {
+                let k = (0..3)
+                    .find(|&k| opposite(&triangles[from], k) == key)
+                    .expect("the hinge's edge is the triangle's");
+                across[from][k] = to as u32;
+            }
+        }
         let corner_uv: Vec<_> = (0..triangles.len()).map(|t| mesh.corner_uv(t)).collect();
         let mut chart: Vec<u32> = (0..triangles.len() as u32).collect();
         for h in mesh.hinges() {
@@ -155,8 +178,9 @@ impl Topology {
             rep,
             neighbours,
             owns,
+            triangle_edges,
+            across,
             vertex_triangles,
-            vertex_edges,
             corner_uv,
             chart,
             rest_radius,
@@ -270,11 +294,20 @@ impl Topology {
         }
     }
 
+    /// The corners (bits 0 to 2) and the edges opposite corners (bits 3 to 5) triangle `t`
+    /// speaks for: each particle and each edge has one triangle.
+    pub fn owned(&self, t: usize) -> u8 {
+        self.owns[t]
+    }
+
+    /// The triangle across the edge opposite corner `k` of triangle `t`, if any.
+    pub fn across(&self, t: usize, k: usize) -> Option<usize> {
+        let s = self.across[t][k];
+        (s != u32::MAX).then_some(s as usize)
+    }
+
     pub fn triangles_of(&self, i: usize) -> &[u32] {
         row(&self.vertex_triangles, i)
-    }
-    pub fn edges_of(&self, i: usize) -> &[u32] {
-        row(&self.vertex_edges, i)
     }
 }
 

@@ -115,10 +115,12 @@ impl Simulation {
         // it), and what the next one keeps of the last one's preconditioner.
         let mut pass = 0;
         let mut setup = Setup::Build;
+        // Whether the right-hand side changed since the last solve.
+        let mut new_rhs = true;
         loop {
             // Going on with the same system (after a scout that let nothing go), the
             // friction, the prescribed velocities and the right-hand side stand.
-            if setup != Setup::Keep {
+            if std::mem::take(&mut new_rhs) {
                 if let Some(contacts) = &mut self.contacts {
                     // Friction is part of the solve: b += h F_f(v0), A += h dF_f/dv.
                     contacts
@@ -184,15 +186,20 @@ impl Simulation {
                 sc.friction_from_motion(&self.v, &ws.v_new, h, &mut ws.b, &mut self.matrix);
                 scouting = false;
                 pass += 1;
+                new_rhs = true;
                 if released > 0 {
                     self.refill_filter(h)?;
                 }
+                // Friction holding layers together couples them stiffly: the hierarchy is
+                // made again with it (kept or refreshed only at its finest level, it costs
+                // more iterations than the setup saves, or is not even definite).
                 setup = Setup::Build;
                 continue;
             }
             if last || (released == 0 && !scouting) {
                 break;
             }
+            new_rhs = released > 0;
             setup = if released == 0 {
                 Setup::Keep
             } else {

@@ -1,0 +1,192 @@
+//! The cloth's triangles in a bounding volume hierarchy, searched for pairs near each other
+//! by walking it against itself (node pairs whose boxes overlap, down to leaf pairs). Each
+//! node carries the cone of its triangles' normals and whether they are one connected
+//! piece: a connected patch whose normals spread less than a right angle is a gently
+//! curved sheet that cannot fold onto itself, and is not searched against itself (see
+//! [`super::cone`]). Most of a draped garment is such patches, so its search visits little
+//! more than the folds. A patch that winds round like a spiral ramp would escape this test;
+//! the hierarchy's patches, compact pieces of cloth, do not.
+
+use super::bvh::{Aabb, Bvh};
+use super::cone::Cone;
+use super::topology::Topology;
+use crate::Vec3;
+
+/// Node pairs a search is split into, for the threads.
+const TASKS: usize = 256;
+
+#[derive(Debug, Clone)]
+pub(crate) struct SurfaceTree {
+    pub bvh: Bvh,
+    cones: Vec<Cone>,
+    /// Whether each node's triangles are one connected piece (fixed with the mesh).
+    connected: Vec<bool>,
+    /// Whether each node has a triangle with a particle to search again.
+    dirty: Vec<bool>,
+    /// The leaf of each triangle.
+    leaf_of: Vec<u32>,
+    pub tasks: Vec<(u32, u32)>,
+    scratch: Vec<(u32, u32)>,
+}
+
+impl SurfaceTree {
+    /// The tree of `topology`'s triangles where they are at `x`.
+    pub fn new(topology: &Topology, x: &[Vec3]) -> Self {
+        let centres: Vec<Vec3> = topology
+            .triangles
+            .iter()
+            .map(|t| t.iter().map(|&i| x[i as usize]).sum::<Vec3>() / 3.0)
+            .collect();
+        let bvh = Bvh::new(&centres);
+        let connected = connected_nodes(&bvh, topology);
+        let mut leaf_of = vec![0; topology.triangles.len()];
+        for k in 0..bvh.node_count() {
+            if bvh.is_leaf(k) {
+                for &t in bvh.subtree(k) {
+                    leaf_of[t as usize] = k as u32;
+                }
+            }
+        }
+        Self {
+            leaf_of,
+            cones: vec![Cone::FULL; bvh.node_count()],
+            dirty: vec![true; bvh.node_count()],
+            bvh,
+            connected,
+            tasks: Vec::new(),
+            scratch: Vec::new(),
+        }
+    }
+
+    /// Each node's box and normal cone from its triangles', `bound(t)` and `normals(t)`.
+    pub fn refit(&mut self, bound: impl Fn(usize) -> Aabb, normals: impl Fn(usize) -> Cone) {
+        self.bvh.refit(bound);
+        self.bvh.fold_up(
+            &mut self.cones,
+            |items| {
+                items
+                    .iter()
+                    .skip(1)
+                    .fold(normals(items[0] as usize), |c, &t| c.merge(&normals(t as usize)))
+            },
+            |a, b| a.merge(b),
+        );
+    }
+
+    /// Marks the nodes with a triangle that `dirty(t)` picks.
+    pub fn mark(&mut self, dirty: impl Fn(usize) -> bool) {
+        let mut flags = std::mem::take(&mut self.dirty);
+        self.bvh.fold_up(
+            &mut flags,
+            |items| items.iter().any(|&t| dirty(t as usize)),
+            |a, b| *a || *b,
+        );
+        self.dirty = flags;
+    }
+
+    /// Whether the search goes on into the node pair `(a, b)`: their boxes overlap, a node
+    /// against itself is not a flat connected patch, and with `only_dirty`, one of them has
+    /// a triangle to search again.
+    pub fn keep(&self, a: usize, b: usize, only_dirty: bool, topology: &Topology) -> bool {
+        self.bvh.node_box(a).overlaps(self.bvh.node_box(b))
+            && (!only_dirty || self.dirty[a] || self.dirty[b])
+            && !self.flat_together(a, b, topology)
+    }
+
+    /// Whether nodes `a` and `b` are together one connected patch with its normals within
+    /// a flat cone: a node alone, or two neighbouring leaves (the commonest pair a walk
+    /// meets, all along the patches' borders).
+    fn flat_together(&self, a: usize, b: usize, topology: &Topology) -> bool {
+        if a == b {
+            return self.connected[a] && self.cones[a].is_flat();
+        }
+        self.bvh.is_leaf(a)
+            && self.bvh.is_leaf(b)
+            && self.connected[a]
+            && self.connected[b]
+            && self.cones[a].merge(&self.cones[b]).is_flat()
+            && self.bvh.subtree(a).iter().any(|&t| {
+                (0..3).any(|k| {
+                    topology
+                        .across(t as usize, k)
+                        .is_some_and(|s| self.leaf_of[s] == b as u32)
+                })
+            })
+    }
+
+    /// Splits the search into node-pair tasks.
+    pub fn plan(&mut self, only_dirty: bool, topology: &Topology) {
+        let (mut tasks, mut scratch) = (std::mem::take(&mut self.tasks), std::mem::take(&mut self.scratch));
+        self.bvh.pair_tasks(
+            |a, b| self.keep(a, b, only_dirty, topology),
+            TASKS,
+            &mut tasks,
+            &mut scratch,
+        );
+        (self.tasks, self.scratch) = (tasks, scratch);
+    }
+
+    /// Every pair of triangles (each unordered pair once, a triangle with itself too) in
+    /// the leaf pairs under `task`.
+    pub fn triangle_pairs(
+        &self,
+        task: (u32, u32),
+        only_dirty: bool,
+        topology: &Topology,
+        mut visit: impl FnMut(usize, usize),
+    ) {
+        self.bvh.leaf_pairs(
+            task,
+            |a, b| self.keep(a, b, only_dirty, topology),
+            |first, second, same| {
+                for (k, &s) in first.iter().enumerate() {
+                    let others = if same { &second[k..] } else { second };
+                    for &t in others {
+                        visit(s as usize, t as usize);
+                    }
+                }
+            },
+        );
+    }
+}
+
+/// Whether each node's triangles are one piece through shared edges.
+fn connected_nodes(bvh: &Bvh, topology: &Topology) -> Vec<bool> {
+    let n = topology.triangles.len();
+    let mut member = vec![u32::MAX; n];
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let find = |parent: &mut Vec<u32>, mut i: u32| {
+        while parent[i as usize] != i {
+            let up = parent[parent[i as usize] as usize];
+            parent[i as usize] = up;
+            i = up;
+        }
+        i
+    };
+    (0..bvh.node_count())
+        .map(|k| {
+            let items = bvh.subtree(k);
+            for &t in items {
+                member[t as usize] = k as u32;
+                parent[t as usize] = t;
+            }
+            let mut pieces = items.len();
+            for &t in items {
+                for c in 0..3 {
+                    let Some(s) = topology.across(t as usize, c) else {
+                        continue;
+                    };
+                    if member[s] != k as u32 {
+                        continue;
+                    }
+                    let (a, b) = (find(&mut parent, t), find(&mut parent, s as u32));
+                    if a != b {
+                        parent[a.max(b) as usize] = a.min(b);
+                        pieces -= 1;
+                    }
+                }
+            }
+            pieces == 1
+        })
+        .collect()
+}
