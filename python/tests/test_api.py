@@ -684,6 +684,63 @@ def test_deepest_penetration():
     assert sim.deepest_penetration() == pytest.approx(0.2, abs=1e-3)
 
 
+def two_sheets(gap):
+    """A 9 x 9 sheet and a second one `gap` above it, turned, as one mesh."""
+    low = cloth.ClothMesh.grid(9, 9, (0.4, 0.4), origin=(-0.2, -0.2, 0.0))
+    high = cloth.ClothMesh.grid(9, 9, (0.4, 0.4), origin=(-0.19, -0.18, gap))
+    n = len(low.positions)
+    return cloth.ClothMesh.from_arrays(
+        np.vstack([low.positions, high.positions]),
+        np.vstack([low.uv, high.uv]),
+        np.vstack([low.triangles, high.triangles + n]),
+    ), n
+
+
+@pytest.mark.parametrize("self_collision", [None, True, {"friction": 0.3}, False])
+def test_self_collision_keeps_a_falling_sheet_above_a_held_one(self_collision):
+    mesh, n = two_sheets(0.01)
+    v = np.zeros((2 * n, 3))
+    v[n:, 2] = -3.0
+    sim = cloth.Simulation(
+        mesh,
+        cloth.Fabric.preset("cotton_poplin"),
+        pins=list(range(n)),
+        velocities=v,
+        settings={"time_step": 1 / 60, "gravity": [0.0, 0.0, 0.0]},
+        self_collision=self_collision,
+    )
+    most, contacts = 0, 0
+    for _ in range(20):
+        stats = sim.step()
+        contacts = max(contacts, stats.self_contacts)
+        most = max(most, sim.self_intersections())
+    above = bool((sim.positions[n:, 2] > 0.0).all())
+    if self_collision is False:
+        # Without it, the falling sheet goes through.
+        assert not above and contacts == 0
+    else:
+        assert most == 0 and above and contacts > 0, (most, above, contacts)
+        gap = sim.closest_self_approach(0.01)
+        thickness = cloth.Fabric.preset("cotton_poplin").to_si()["thickness"]
+        assert gap is not None and gap >= 0.5 * thickness, gap
+    assert sim.body_intersections() == 0
+
+
+def test_self_collision_settings_are_checked():
+    mesh, _ = two_sheets(0.01)
+    f = cloth.Fabric.preset("silk")
+    with pytest.raises(ValueError) as e:
+        cloth.Simulation(mesh, f, self_collision={"thickness": -1.0})
+    assert "self_collision.thickness" in str(e.value), str(e.value)
+    with pytest.raises(ValueError) as e:
+        cloth.Simulation(mesh, f, self_collision={"thicknes": 0.001})
+    assert "thicknes" in str(e.value), str(e.value)
+    # Self-collision is the scene's, not the solver's.
+    with pytest.raises(ValueError) as e:
+        cloth.Simulation(mesh, f, settings={"self_collision": {"enabled": False}})
+    assert "self_collision" in str(e.value), str(e.value)
+
+
 # --------------------------------------------------------------------------------- scenes
 
 

@@ -65,6 +65,11 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
         "| deepest penetration | {:.2e} m |",
         report.deepest_penetration
     )?;
+    writeln!(
+        out,
+        "| intersecting edge-triangle pairs, cloth / cloth and bodies | {} / {} |",
+        report.self_intersections, report.body_intersections
+    )?;
     if let Some(gap) = report.largest_seam_gap {
         writeln!(out, "| largest seam gap | {:.2} mm |", 1e3 * gap)?;
     }
@@ -86,13 +91,20 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
     if let Some(last) = report.frames.last() {
         writeln!(
             out,
-            "\n{} frames in `{}` (the last at {} step {}).",
+            "\n{} frames in `{}` (the last at {} step {}); the most intersecting edge-triangle \
+             pairs of the cloth in one: {}.",
             report.frames.len(),
             Path::new(&last.file)
                 .parent()
                 .map_or("".into(), |p| p.display().to_string()),
             last.stage,
-            last.step
+            last.step,
+            report
+                .frames
+                .iter()
+                .map(|f| f.self_intersections)
+                .max()
+                .unwrap_or(0)
         )?;
     }
     for w in &report.warnings {

@@ -172,6 +172,17 @@ fn bad_scenes_exit_with_2_and_name_the_place() {
     let (code, e) = check_text(&dir, &format!("{SHEET}\n[output]\nframes_every = 0\n"));
     assert_eq!(code, Some(2));
     assert!(e.contains("output.frames_every"), "{e}");
+    // Self-collision: a thickness below zero names the key; set in [solver], it is refused
+    // (it is the scene's, for every stage).
+    let (code, e) = check_text(&dir, &format!("{SHEET}\n[self_collision]\nthickness = -0.001\n"));
+    assert_eq!(code, Some(2));
+    assert!(e.contains("self_collision.thickness"), "{e}");
+    let (code, e) = check_text(
+        &dir,
+        &format!("{SHEET}\n[solver.self_collision]\nenabled = false\n"),
+    );
+    assert_eq!(code, Some(2));
+    assert!(e.contains("self_collision") && e.contains("line"), "{e}");
 }
 
 #[test]
@@ -197,6 +208,10 @@ fn a_run_writes_outputs_that_read_back() {
     assert!(report["strain"]["max_warp"].as_f64().unwrap().is_finite());
     assert_eq!(report["stages"][0]["steps"], 60);
     assert_eq!(report["settings"]["rest"]["max_steps"], 60);
+    // Self-collision is on unless a scene turns it off, and nothing passes through.
+    assert_eq!(report["settings"]["self_collision"]["enabled"], true);
+    assert_eq!(report["self_intersections"], 0);
+    assert_eq!(report["body_intersections"], 0);
     let ply = std::fs::read_to_string(out.join("cloth.ply")).unwrap();
     assert!(
         ply.starts_with("ply\n") && ply.contains("element vertex 144") && ply.contains("property uchar red")
@@ -331,6 +346,7 @@ png = false
     assert_eq!(frames.len(), 3, "{report}");
     for (k, f) in frames.iter().enumerate() {
         assert_eq!(f["step"].as_u64(), Some(20 * (k as u64 + 1)));
+        assert_eq!(f["self_intersections"], 0);
         let (models, _) = tobj::load_obj(
             out.join(f["file"].as_str().unwrap()),
             &tobj::LoadOptions::default(),
