@@ -47,6 +47,7 @@ use chunks::ChunkedSearch;
 use cone::Cone;
 use proximity::Cloth;
 pub use proximity::Contact;
+pub(crate) use response::StepEnd;
 use surface::SurfaceTree;
 use topology::Topology;
 

@@ -21,6 +21,19 @@ pub(crate) struct ImpactCounts {
     pub unresolved: usize,
 }
 
+/// The end of a step as the impact passes see and change it: the positions at its start
+/// and end and the velocities at its end, with the particles' masses, which are pinned, and
+/// the outward normal of the body holding each (zero for free particles).
+pub(crate) struct StepEnd<'a> {
+    pub x0: &'a [Vec3],
+    pub x1: &'a mut [Vec3],
+    pub v1: &'a mut [Vec3],
+    pub masses: &'a [f64],
+    pub pinned: &'a [bool],
+    pub support: &'a [Vec3],
+    pub h: f64,
+}
+
 /// A zone's sums: mass and mass-weighted displacement of its free members, and count and
 /// summed displacement of the members that do not yield (pinned, or held by a body).
 #[derive(Debug, Clone, Copy, Default)]
@@ -64,22 +77,10 @@ impl Scratch {
 }
 
 impl SelfContacts {
-    /// Resolves the pairs that pass through each other on the straight paths from `x0`
-    /// to `x1` (the step's end, changed in place with the velocities `v1`). Pinned
-    /// particles do not yield to impacts; particles a body holds (`support`, the body's
-    /// outward normal, zero for the rest) do not yield into it.
-    #[allow(clippy::too_many_arguments)]
-    pub fn resolve(
-        &mut self,
-        x0: &[Vec3],
-        x1: &mut [Vec3],
-        v1: &mut [Vec3],
-        masses: &[f64],
-        pinned: &[bool],
-        support: &[Vec3],
-        h: f64,
-        parallel: bool,
-    ) -> ImpactCounts {
+    /// Resolves the pairs that pass through each other on the straight paths of `end`
+    /// (changing its end positions and velocities). Pinned particles do not yield to
+    /// impacts; particles a body holds do not yield into it.
+    pub fn resolve(&mut self, mut end: StepEnd<'_>, parallel: bool) -> ImpactCounts {
         let mut counts = ImpactCounts::default();
         for &i in &self.response.shifted {
             self.response.shift[i as usize] = 0.0;
@@ -90,7 +91,7 @@ impl SelfContacts {
             // Pairs ending too close are put right by impulses only; zones and the last
             // resort are for pairs passing through each other.
             let impulses = pass < IMPULSE_PASSES;
-            self.find_impacts(x0, x1, pass == 0, impulses, parallel);
+            self.find_impacts(end.x0, end.x1, pass == 0, impulses, parallel);
             let impacts = std::mem::take(&mut self.response.impacts);
             let sc = &mut self.response;
             sc.dirty.fill(false);
@@ -107,12 +108,12 @@ impl SelfContacts {
             }
             if impulses {
                 for c in &impacts {
-                    self.impulse(c, x1, v1, masses, pinned, support);
+                    self.impulse(c, &mut end);
                 }
                 counts.impacts += impacts.len();
             } else if pass < IMPULSE_PASSES + ZONE_PASSES {
-                counts.zone_particles = self.move_zones(&impacts, x0, x1, v1, masses, pinned, support, h);
-            } else if self.freeze(&impacts, x0, x1, v1, pinned) == 0 {
+                counts.zone_particles = self.move_zones(&impacts, &mut end);
+            } else if self.freeze(&impacts, &mut end) == 0 {
                 // Nothing left to stop: what crosses now is the pins' doing.
                 counts.unresolved = impacts.len();
                 self.response.impacts = impacts;
@@ -138,14 +139,8 @@ impl SelfContacts {
     /// they started the step, at rest. The start had nothing passing through itself, so
     /// freezing more and more of the cloth ends with nothing crossing. Returns how many
     /// particles it froze now.
-    fn freeze(
-        &mut self,
-        impacts: &[Impact],
-        x0: &[Vec3],
-        x1: &mut [Vec3],
-        v1: &mut [Vec3],
-        pinned: &[bool],
-    ) -> usize {
+    fn freeze(&mut self, impacts: &[Impact], end: &mut StepEnd<'_>) -> usize {
+        let (x0, x1, v1, pinned) = (end.x0, &mut *end.x1, &mut *end.v1, end.pinned);
         let mut count = 0;
         for c in impacts {
             for k in 0..4 {
@@ -245,15 +240,9 @@ impl SelfContacts {
     /// One impact's inelastic impulse: the pair is moved back along the normal to its
     /// target gap and its approach along the normal stopped, with Coulomb friction on the
     /// impulse.
-    fn impulse(
-        &mut self,
-        c: &Impact,
-        x1: &mut [Vec3],
-        v1: &mut [Vec3],
-        masses: &[f64],
-        pinned: &[bool],
-        support: &[Vec3],
-    ) {
+    fn impulse(&mut self, c: &Impact, end: &mut StepEnd<'_>) {
+        let (x1, v1, masses, pinned, support) =
+            (&mut *end.x1, &mut *end.v1, end.masses, end.pinned, end.support);
         let (w, p, n) = (c.weights, c.particles.map(|i| i as usize), c.normal);
         // Each particle moves along `w n`: a pinned one not at all, one a body holds not
         // into the body.
@@ -315,18 +304,16 @@ impl SelfContacts {
     /// Merges the particles of `impacts` into impact zones (with the zones they were in)
     /// and moves every zone as one, by its free members' mass-weighted displacement, or
     /// if it has members that do not yield, by theirs. Returns the particles in zones.
-    #[allow(clippy::too_many_arguments)]
-    fn move_zones(
-        &mut self,
-        impacts: &[Impact],
-        x0: &[Vec3],
-        x1: &mut [Vec3],
-        v1: &mut [Vec3],
-        masses: &[f64],
-        pinned: &[bool],
-        support: &[Vec3],
-        h: f64,
-    ) -> usize {
+    fn move_zones(&mut self, impacts: &[Impact], end: &mut StepEnd<'_>) -> usize {
+        let (x0, x1, v1, masses, pinned, support, h) = (
+            end.x0,
+            &mut *end.x1,
+            &mut *end.v1,
+            end.masses,
+            end.pinned,
+            end.support,
+            end.h,
+        );
         let n = self.topology.particles();
         let sc = &mut self.response;
         if sc.zoned.is_empty() {

@@ -7,7 +7,7 @@ use crate::error::{DivergenceReason, ParamError, SimError};
 use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
 use crate::mesh::ClothMesh;
-use crate::self_contact::{Intersections, SelfContacts};
+use crate::self_contact::{Intersections, SelfContacts, StepEnd};
 use crate::Vec3;
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -636,16 +636,16 @@ impl Simulation {
                 ws.support[c.particle()] = c.normal;
             }
         }
-        let counts = sc.resolve(
-            &self.x,
-            &mut ws.x_new,
-            &mut ws.v_new,
-            self.model.masses(),
-            &self.pinned,
-            &ws.support,
+        let end = StepEnd {
+            x0: &self.x,
+            x1: &mut ws.x_new,
+            v1: &mut ws.v_new,
+            masses: self.model.masses(),
+            pinned: &self.pinned,
+            support: &ws.support,
             h,
-            self.settings.parallel,
-        );
+        };
+        let counts = sc.resolve(end, self.settings.parallel);
         if let Some(contacts) = &mut self.contacts {
             for (i, d) in sc.shifted() {
                 contacts.particles.displaced(i, d);
