@@ -80,7 +80,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             bodies,
             meshing,
         } = sew_dress(&scene, &dir)?;
-        let draped = drape(&sewn, bodies.clone(), &scene.drape, |_, _| {
+        let draped = drape(&sewn, bodies.clone(), &scene.drape_settings(), |_, _| {
             ControlFlow::Continue(())
         })?;
         let total = start.elapsed().as_secs_f64();
@@ -152,7 +152,7 @@ fn sew_dress(scene: &SceneFile, dir: &Path) -> Result<SewnDress, Box<dyn std::er
         &garment,
         &fabrics,
         prepared.bodies.clone(),
-        &scene.sewing,
+        &scene.sewing_settings(),
         |_, _, _| ControlFlow::Continue(()),
     )?;
     Ok(SewnDress {

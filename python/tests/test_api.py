@@ -714,7 +714,10 @@ def test_self_collision_keeps_a_falling_sheet_above_a_held_one(self_collision):
         stats = sim.step()
         contacts = max(contacts, stats.self_contacts)
         most = max(most, sim.self_intersections())
-    above = bool((sim.positions[n:, 2] > 0.0).all())
+    # Every particle of the falling sheet over the held one stays above it.
+    upper = sim.positions[n:]
+    over = (np.abs(upper[:, 0]) < 0.19) & (np.abs(upper[:, 1]) < 0.19)
+    above = bool((upper[over, 2] > 0.0).all())
     if self_collision is False:
         # Without it, the falling sheet goes through.
         assert not above and contacts == 0
