@@ -3,22 +3,23 @@
 //! Two stages a step, after Bridson, Fedkiw & Anderson (2002):
 //! - **Proximity, in the solve.** At the start of the step every particle-triangle and
 //!   edge-edge pair closer than its contact distance (the sum of the two layers' half
-//!   thicknesses) becomes a one-sided spring on the gap along the pair's normal
-//!   ([`crate::energy::repulsion`]), with Coulomb friction between the layers as a drag
-//!   against their sliding, both with their Jacobians in the implicit system (as
-//!   transient couplings of the block-sparse matrix, which the multigrid carries to its
-//!   coarse levels). Found through bounding volume hierarchies refitted each step.
+//!   thicknesses), or closing in on it within the step, becomes a spring on the gap along
+//!   the pair's normal ([`crate::energy::repulsion`]), with Coulomb friction between the
+//!   layers as a drag against their sliding (set after a scouting solve), both with their
+//!   Jacobians in the implicit system as transient couplings of the block-sparse matrix,
+//!   which the multigrid carries to its coarse levels. Found by walking a bounding volume
+//!   hierarchy of the triangles, refitted each step, against itself (`surface`).
 //! - **Impacts, after it.** Every particle-triangle and edge-edge pair is tested for
-//!   passing through each other along the straight paths of the step ([`ccd`]). A pair
+//!   passing through each other along the straight paths of the step (`ccd`). A pair
 //!   that does is put back on its side, inside the contact distance where the next step's
 //!   repulsion holds it, and loses its approach speed (an inelastic impulse with Coulomb
 //!   friction), passes of this going on over the pairs they disturb. Pairs still
 //!   crossing after [`IMPULSE_PASSES`] are merged into impact zones that move as one,
-//!   which cannot pass through themselves (Provot 1997); zones grow until nothing
-//!   crosses.
+//!   which cannot pass through themselves (Provot 1997), for [`ZONE_PASSES`]; what still
+//!   crosses then stays where the step started it.
 //!
-//! Pairs sharing a particle are exempt, and so are the particles a seam pulls together
-//! (they will be one), with their triangles and edges.
+//! Exempt are pairs with shared or neighbouring particles (the particles a seam pulls
+//! together counting as one until welded) and pairs near in the flat cloth (`topology`).
 
 mod bvh;
 mod ccd;
@@ -56,7 +57,7 @@ pub const IMPULSE_PASSES: usize = 6;
 /// Passes growing the impact zones at most.
 pub const ZONE_PASSES: usize = 40;
 /// Pairs nearer than this in the flat cloth, in the largest distance a contact is looked
-/// for at, are exempt (see [`topology`]): a margin for the cloth's compression.
+/// for at, are exempt (see `topology`): a margin for the cloth's compression.
 const REST_EXEMPTION: f64 = 1.5;
 
 /// The radius within which pairs near in the flat cloth are exempt, for a largest contact
