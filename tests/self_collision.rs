@@ -229,3 +229,100 @@ fn layers_in_contact_give_the_same_result_on_any_number_of_threads() {
     assert_eq!(contacts, same);
     assert_eq!(one, two);
 }
+
+/// A strip wound twice round like a ramp, `pitch` between its turns: every normal within a
+/// degree of vertical, all of it one connected piece, yet its upper turn lies over the
+/// lower. Returns the simulation with the lower turn pinned and the upper one thrown down
+/// at `speed`, and the number of particles pinned.
+fn ramp(pitch: f64, speed: f64, self_collision: SelfCollision) -> (Simulation, usize) {
+    use std::f64::consts::TAU;
+    let (radius, width, along, across) = (0.06, 0.02, 120, 3);
+    let mut positions = Vec::new();
+    let mut uv = Vec::new();
+    for i in 0..=along {
+        let angle = 2.0 * TAU * i as f64 / along as f64;
+        for j in 0..=across {
+            let r = radius - 0.5 * width + width * j as f64 / across as f64;
+            positions.push(Vec3::new(r * angle.cos(), r * angle.sin(), pitch * angle / TAU));
+            uv.push(nalgebra::Vector2::new(
+                radius * angle,
+                width * j as f64 / across as f64,
+            ));
+        }
+    }
+    let id = |i: usize, j: usize| i * (across + 1) + j;
+    let mut triangles = Vec::new();
+    for i in 0..along {
+        for j in 0..across {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    let mesh = ClothMesh::new(positions, uv, triangles).unwrap();
+    // The first turn's particles.
+    let lower = (along / 2 + 1) * (across + 1);
+    let mut v = vec![Vec3::zeros(); mesh.vertex_count()];
+    for vi in &mut v[lower..] {
+        *vi = Vec3::new(0.0, 0.0, -speed);
+    }
+    let settings = SolverSettings {
+        time_step: 0.01,
+        self_collision,
+        ..SolverSettings::default()
+    };
+    let sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
+        .settings(settings)
+        .pins((0..lower).map(Pin::fixed))
+        .velocities(v)
+        .build()
+        .unwrap();
+    (sim, lower)
+}
+
+#[test]
+fn a_ramp_wound_over_itself_does_not_pass_through_its_lower_turn() {
+    // Its turns 2 mm apart, the upper one moving 5 mm a step: through the lower turn
+    // within the first step unless the search looks inside the ramp, whose normals lie in
+    // a narrow cone (the contour test, which sees its contour wind round twice).
+    let (pitch, speed) = (0.002, 0.5);
+    let (mut sim, lower) = ramp(pitch, speed, SelfCollision::default());
+    let thickness = sim.fabrics()[0].thickness;
+    let mut contacts = Vec::new();
+    run(&mut sim, 10, |sim| {
+        let found = sim.self_intersections();
+        assert_eq!(found.count, 0, "step {}: {found:?}", sim.step_count());
+        contacts.push(sim.self_contacts().len());
+    });
+    // Once they meet (the first step's impacts land them within the contact distance),
+    // the turns are in contact: the proximity search looks inside the ramp too.
+    assert!(
+        contacts[1..].iter().all(|&c| c > 100),
+        "contacts per step {contacts:?}"
+    );
+    // The upper turn lies on the lower one where it is over it (away from the start,
+    // where the turns meet): above it by about the thickness.
+    let (inner, outer) = (0.05, 0.07);
+    let mut over = 0;
+    for p in &sim.positions()[lower..] {
+        let r = p.xy().norm();
+        let angle = p.y.atan2(p.x).rem_euclid(std::f64::consts::TAU);
+        if !(r > inner && r < outer && angle > 0.3 && angle < std::f64::consts::TAU - 0.3) {
+            continue;
+        }
+        over += 1;
+        let beneath = pitch * angle / std::f64::consts::TAU;
+
+        assert!(
+            p.z - beneath > 0.5 * thickness,
+            "{p} is {} above the lower turn",
+            p.z - beneath
+        );
+    }
+    assert!(over > lower / 4, "{over} particles over the lower turn");
+    let (mut through, _) = ramp(pitch, speed, SelfCollision::off());
+    let mut most = 0;
+    run(&mut through, 10, |sim| {
+        most = most.max(sim.self_intersections().count)
+    });
+    assert!(most > 0, "no intersections without self-collision");
+}

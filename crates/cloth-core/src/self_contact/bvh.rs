@@ -126,6 +126,13 @@ impl Bvh {
         &self.order[n.first as usize..(n.first + n.span) as usize]
     }
 
+    /// Where node `k`'s primitives lie in the tree's order (that of [`Bvh::subtree`] of the
+    /// root).
+    pub fn span(&self, k: usize) -> std::ops::Range<usize> {
+        let n = self.nodes[k];
+        n.first as usize..(n.first + n.span) as usize
+    }
+
     pub fn is_leaf(&self, k: usize) -> bool {
         self.nodes[k].count > 0
     }

@@ -63,6 +63,10 @@ impl Cone {
         }
     }
 
+    pub fn axis(&self) -> &Vec3 {
+        &self.axis
+    }
+
     pub fn is_flat(&self) -> bool {
         self.half < FLAT
     }

@@ -25,6 +25,7 @@ mod bvh;
 mod ccd;
 mod chunks;
 mod cone;
+mod contour;
 pub mod geometry;
 mod intersections;
 mod proximity;
@@ -46,10 +47,11 @@ use bvh::Aabb;
 use ccd::Impact;
 use chunks::ChunkedSearch;
 use cone::Cone;
+use contour::Motion;
 use proximity::Cloth;
 pub use proximity::Contact;
 pub(crate) use response::StepEnd;
-use surface::SurfaceTree;
+use surface::{Search, SurfaceTree};
 use topology::Topology;
 
 /// Impulse passes over the impacts before the remaining ones are merged into zones.
@@ -230,7 +232,12 @@ impl SelfContacts {
                 Cone::along((b - a).cross(&(c - a)))
             },
         );
-        self.surface.plan(false, topo);
+        let search = Search {
+            topology: topo,
+            motion: Motion { start: x, end: x },
+            only_dirty: false,
+        };
+        self.surface.plan(&search);
         let cloth = Cloth {
             topology: topo,
             x,
@@ -243,7 +250,7 @@ impl SelfContacts {
         let surface = &self.surface;
         self.contact_search
             .run(&surface.tasks, parallel, &mut self.contacts, |task, found| {
-                surface.triangle_pairs(task, false, topo, |s, t| {
+                surface.triangle_pairs(task, &search, |s, t| {
                     // A triangle's own particles and edges are exempt from it.
                     if s == t {
                         return;

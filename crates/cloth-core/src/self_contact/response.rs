@@ -5,6 +5,8 @@
 use super::bvh::Aabb;
 use super::ccd::{self, Impact, Paths};
 use super::cone::Cone;
+use super::contour::Motion;
+use super::surface::Search;
 use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
 use crate::Vec3;
 
@@ -175,11 +177,14 @@ impl SelfContacts {
         self.surface.refit(
             |t| over(&topo.triangles[t]).inflated(0.5 * pad),
             |t| {
-                let normal = |x: &[Vec3]| {
-                    let [a, b, c] = topo.triangles[t].map(|i| x[i as usize]);
-                    Cone::along((b - a).cross(&(c - a)))
-                };
-                normal(x0).merge(&normal(x1))
+                // The normal over the step, (u0 + t du) x (v0 + t dv), is a quadratic with
+                // Bernstein coefficients u0 x v0, (u0 x v1 + u1 x v0) / 2 and u1 x v1: the
+                // cone of these three holds it throughout.
+                let [a, b, c] = topo.triangles[t].map(|i| (x0[i as usize], x1[i as usize]));
+                let (u, v) = ((b.0 - a.0, b.1 - a.1), (c.0 - a.0, c.1 - a.1));
+                Cone::along(u.0.cross(&v.0))
+                    .merge(&Cone::along(u.1.cross(&v.1)))
+                    .merge(&Cone::along(u.0.cross(&v.1) + u.1.cross(&v.0)))
             },
         );
         let dirty = &self.response.dirty;
@@ -187,7 +192,12 @@ impl SelfContacts {
             self.surface
                 .mark(|t| topo.triangles[t].iter().any(|&i| dirty[i as usize]));
         }
-        self.surface.plan(!full, topo);
+        let search = Search {
+            topology: topo,
+            motion: Motion { start: x0, end: x1 },
+            only_dirty: !full,
+        };
+        self.surface.plan(&search);
         let half = &self.half_thickness;
         let distance =
             |p: [u32; 4]| move |w: &[f64; 4]| (0..4).map(|k| w[k].abs() * half[p[k] as usize]).sum::<f64>();
@@ -201,7 +211,7 @@ impl SelfContacts {
         let mut impacts = std::mem::take(&mut self.response.impacts);
         self.impact_search
             .run(&surface.tasks, parallel, &mut impacts, |task, found| {
-                surface.triangle_pairs(task, !full, topo, |s, t| {
+                surface.triangle_pairs(task, &search, |s, t| {
                     if s == t {
                         return;
                     }

@@ -9,6 +9,7 @@
 
 use super::bvh::{Aabb, Bvh};
 use super::cone::Cone;
+use super::contour::{outer, star_shaped, Contours, Motion};
 use super::topology::Topology;
 use crate::Vec3;
 
@@ -23,8 +24,7 @@ pub(crate) struct SurfaceTree {
     connected: Vec<bool>,
     /// Whether each node has a triangle with a particle to search again.
     dirty: Vec<bool>,
-    /// The leaf of each triangle.
-    leaf_of: Vec<u32>,
+    contours: Contours,
     pub tasks: Vec<(u32, u32)>,
     scratch: Vec<(u32, u32)>,
 }
@@ -39,16 +39,8 @@ impl SurfaceTree {
             .collect();
         let bvh = Bvh::new(&centres);
         let connected = connected_nodes(&bvh, topology);
-        let mut leaf_of = vec![0; topology.triangles.len()];
-        for k in 0..bvh.node_count() {
-            if bvh.is_leaf(k) {
-                for &t in bvh.subtree(k) {
-                    leaf_of[t as usize] = k as u32;
-                }
-            }
-        }
         Self {
-            leaf_of,
+            contours: Contours::new(&bvh, topology, x),
             cones: vec![Cone::FULL; bvh.node_count()],
             dirty: vec![true; bvh.node_count()],
             bvh,
@@ -84,60 +76,66 @@ impl SurfaceTree {
         self.dirty = flags;
     }
 
-    /// Whether the search goes on into the node pair `(a, b)`: their boxes overlap, a node
-    /// against itself is not a flat connected patch, and with `only_dirty`, one of them has
-    /// a triangle to search again.
-    pub fn keep(&self, a: usize, b: usize, only_dirty: bool, topology: &Topology) -> bool {
+    /// Whether the search goes on into the node pair `(a, b)`: their boxes overlap, they
+    /// are not together a flat patch, and in a search of the dirty nodes only, one of them
+    /// is dirty.
+    pub fn keep(&self, a: usize, b: usize, search: &Search<'_>) -> bool {
         self.bvh.node_box(a).overlaps(self.bvh.node_box(b))
-            && (!only_dirty || self.dirty[a] || self.dirty[b])
-            && !self.flat_together(a, b, topology)
+            && (!search.only_dirty || self.dirty[a] || self.dirty[b])
+            && !self.flat_together(a, b, search)
     }
 
     /// Whether nodes `a` and `b` are together one connected patch with its normals within
-    /// a flat cone: a node alone, or two neighbouring leaves (the commonest pair a walk
-    /// meets, all along the patches' borders).
-    fn flat_together(&self, a: usize, b: usize, topology: &Topology) -> bool {
+    /// a flat cone and its contour star-shaped over the search's motion: a node alone, or
+    /// two neighbouring leaves (the commonest pair a walk meets, all along the patches'
+    /// borders).
+    fn flat_together(&self, a: usize, b: usize, search: &Search<'_>) -> bool {
         if a == b {
-            return self.connected[a] && self.cones[a].is_flat();
+            let cone = &self.cones[a];
+            return self.connected[a]
+                && cone.is_flat()
+                && star_shaped(
+                    self.contours.of(a).iter().copied(),
+                    search.topology.triangles[self.contours.centre(a) as usize],
+                    cone.axis(),
+                    &search.motion,
+                );
         }
-        self.bvh.is_leaf(a)
+        let cone = self.cones[a].merge(&self.cones[b]);
+        if !(self.bvh.is_leaf(a)
             && self.bvh.is_leaf(b)
             && self.connected[a]
             && self.connected[b]
-            && self.cones[a].merge(&self.cones[b]).is_flat()
-            && self.bvh.subtree(a).iter().any(|&t| {
-                (0..3).any(|k| {
-                    topology
-                        .across(t as usize, k)
-                        .is_some_and(|s| self.leaf_of[s] == b as u32)
-                })
-            })
+            && cone.is_flat())
+        {
+            return false;
+        }
+        let Some(centre) = self.contours.pair_centre(a, b) else {
+            return false;
+        };
+        let (ca, cb) = (self.contours.of(a), self.contours.of(b));
+        star_shaped(
+            outer(ca, cb).chain(outer(cb, ca)),
+            search.topology.triangles[centre as usize],
+            cone.axis(),
+            &search.motion,
+        )
     }
 
     /// Splits the search into node-pair tasks.
-    pub fn plan(&mut self, only_dirty: bool, topology: &Topology) {
+    pub fn plan(&mut self, search: &Search<'_>) {
         let (mut tasks, mut scratch) = (std::mem::take(&mut self.tasks), std::mem::take(&mut self.scratch));
-        self.bvh.pair_tasks(
-            |a, b| self.keep(a, b, only_dirty, topology),
-            TASKS,
-            &mut tasks,
-            &mut scratch,
-        );
+        self.bvh
+            .pair_tasks(|a, b| self.keep(a, b, search), TASKS, &mut tasks, &mut scratch);
         (self.tasks, self.scratch) = (tasks, scratch);
     }
 
     /// Every pair of triangles (each unordered pair once, a triangle with itself too) in
     /// the leaf pairs under `task`.
-    pub fn triangle_pairs(
-        &self,
-        task: (u32, u32),
-        only_dirty: bool,
-        topology: &Topology,
-        mut visit: impl FnMut(usize, usize),
-    ) {
+    pub fn triangle_pairs(&self, task: (u32, u32), search: &Search<'_>, mut visit: impl FnMut(usize, usize)) {
         self.bvh.leaf_pairs(
             task,
-            |a, b| self.keep(a, b, only_dirty, topology),
+            |a, b| self.keep(a, b, search),
             |first, second, same| {
                 for (k, &s) in first.iter().enumerate() {
                     let others = if same { &second[k..] } else { second };
@@ -148,6 +146,14 @@ impl SurfaceTree {
             },
         );
     }
+}
+
+/// What a walk of the tree searches: the cloth's topology, its motion over the step (the
+/// contour test holds over all of it), and whether only dirty nodes.
+pub(crate) struct Search<'a> {
+    pub topology: &'a Topology,
+    pub motion: Motion<'a>,
+    pub only_dirty: bool,
 }
 
 /// Whether each node's triangles are one piece through shared edges.
