@@ -174,7 +174,7 @@ fn experiment(scene: &SceneFile, dir: &Path) -> Result<(), Box<dyn std::error::E
     );
     println!("| integrator | h, s | iterations | max warp (horizontal) stretch | max weft (vertical) stretch | ms per iteration (median) |");
     println!("|---|---|---|---|---|---|");
-    let explicit_h = stable_explicit_step(&sewn, bodies)?;
+    let explicit_h = stable_explicit_step(&sewn, bodies, &scene.solver_settings())?;
     for (integrator, h, checkpoints) in [
         (
             Integrator::ExplicitEuler,
@@ -183,10 +183,11 @@ fn experiment(scene: &SceneFile, dir: &Path) -> Result<(), Box<dyn std::error::E
         ),
         (Integrator::ImplicitEuler, 1.0 / 60.0, vec![100, 500]),
     ] {
+        // The scene's solver settings (its self-collision with them), this integrator.
         let solver = SolverSettings {
             integrator,
             time_step: h,
-            ..SolverSettings::default()
+            ..scene.solver_settings()
         };
         let mut sim = drape_simulation(&sewn, bodies.clone(), solver, 0.0)?;
         let mut times = Vec::new();
@@ -216,8 +217,12 @@ fn experiment(scene: &SceneFile, dir: &Path) -> Result<(), Box<dyn std::error::E
 /// halved until 2,000 steps from the sewn state run with the kinetic energy never above
 /// three times its value at step 200. Instability here is slow: a step at twice the
 /// limit survives a few hundred steps while its energy grows tenfold in two thousand,
-/// so a short trial would pass it.
-fn stable_explicit_step(sewn: &Sewn, bodies: &Arc<Bodies>) -> Result<f64, Box<dyn std::error::Error>> {
+/// so a short trial would pass it. `base` holds the other settings.
+fn stable_explicit_step(
+    sewn: &Sewn,
+    bodies: &Arc<Bodies>,
+    base: &SolverSettings,
+) -> Result<f64, Box<dyn std::error::Error>> {
     let lightest_fabric = sewn
         .fabrics
         .iter()
@@ -235,7 +240,7 @@ fn stable_explicit_step(sewn: &Sewn, bodies: &Arc<Bodies>) -> Result<f64, Box<dy
         let solver = SolverSettings {
             integrator: Integrator::ExplicitEuler,
             time_step: h,
-            ..SolverSettings::default()
+            ..base.clone()
         };
         let mut sim = drape_simulation(sewn, bodies.clone(), solver, 0.0)?;
         let mut reference = f64::INFINITY;

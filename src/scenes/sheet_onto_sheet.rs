@@ -1,6 +1,6 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use super::{scene_fabric, two_sheets, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{ClothMesh, SimulationBuilder, Vec3};
+use cloth_core::{SimulationBuilder, Vec3};
 use nalgebra::Isometry3;
 
 /// A sheet lying on a block, and a second sheet thrown down onto it fast: it travels
@@ -47,19 +47,13 @@ impl SheetOntoSheet {
             .with_pose(Isometry3::translation(0.0, 0.0, -0.05))?
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
-        let n = self.particles_per_side;
-        let lying_at = Vec3::new(0.0, 0.0, self.thickness);
-        let lying = square_sheet(n, self.sheet_size, lying_at, Vec3::x(), Vec3::y())?;
-        let (s, c) = self.turn.to_radians().sin_cos();
-        let falling = square_sheet(
-            n,
+        let (mesh, count) = two_sheets(
+            self.particles_per_side,
             self.sheet_size,
-            lying_at + Vec3::new(0.02, 0.01, self.height),
-            Vec3::new(c, s, 0.0),
-            Vec3::new(-s, c, 0.0),
+            Vec3::new(0.0, 0.0, self.thickness),
+            Vec3::new(0.02, 0.01, self.height),
+            self.turn,
         )?;
-        let count = lying.vertex_count();
-        let mesh = ClothMesh::join(&[lying, falling])?;
         let velocities = (0..mesh.vertex_count())
             .map(|i| {
                 if i < count {

@@ -1,6 +1,6 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use super::{scene_fabric, two_sheets, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{ClothMesh, SimulationBuilder, Vec3};
+use cloth_core::{SimulationBuilder, Vec3};
 
 /// Two square sheets, one a little above the other and turned against it, dropped
 /// together onto a sphere: the upper one drapes over the lower.
@@ -44,18 +44,13 @@ impl StackedSheets {
         let body = Body::new("sphere", sphere)
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
-        let n = self.particles_per_side;
-        let low = Vec3::new(0.0, 0.0, self.radius + self.thickness + self.drop_height);
-        let lower = square_sheet(n, self.sheet_size, low, Vec3::x(), Vec3::y())?;
-        let (s, c) = self.turn.to_radians().sin_cos();
-        let upper = square_sheet(
-            n,
+        let (mesh, _) = two_sheets(
+            self.particles_per_side,
             self.sheet_size,
-            low + Vec3::new(0.0, 0.0, self.gap),
-            Vec3::new(c, s, 0.0),
-            Vec3::new(-s, c, 0.0),
+            Vec3::new(0.0, 0.0, self.radius + self.thickness + self.drop_height),
+            Vec3::new(0.0, 0.0, self.gap),
+            self.turn,
         )?;
-        let mesh = ClothMesh::join(&[lower, upper])?;
         Scene::new(
             body,
             SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),

@@ -125,7 +125,7 @@ impl RunObserver for Progress {
         if self.verbosity == Verbosity::Verbose {
             self.say(&format!(
                 "{} step {}: t {:.4} s, {} CG iterations (residual {:.1e}), max speed {:.2e} m/s, \
-                 {} contacts, {} self-contacts, {} self-impacts, assembly {:.1} ms, solve {:.1} ms, \
+                 {} contacts, {} self-contacts, {} self-impacts, {} in impact zones, assembly {:.1} ms, solve {:.1} ms, \
                  contact {:.1} ms, self-collision {:.1} ms",
                 self.stage,
                 stats.step,
@@ -135,7 +135,8 @@ impl RunObserver for Progress {
                 stats.max_speed,
                 stats.contacts,
                 stats.self_contacts,
-                stats.self_impacts + stats.self_zone_particles,
+                stats.self_impacts,
+                stats.self_zone_particles,
                 1e3 * stats.assembly_seconds,
                 1e3 * stats.solve_seconds,
                 1e3 * stats.contact_seconds,

@@ -206,8 +206,6 @@ impl Body {
         self.surface.transformed(&self.pose(t))
     }
 
-    /// Signed distance of `x` from the surface at time `t` (negative inside), with no
-    /// distance limit.
     /// How many of the body's triangles the segment from `a` to `b` passes through at
     /// time `t` (see [`cloth_core::Collider::segment_crossings`]).
     pub fn segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize {
@@ -227,6 +225,8 @@ impl Body {
             .count()
     }
 
+    /// Signed distance of `x` from the surface at time `t` (negative inside), with no
+    /// distance limit.
     pub fn signed_distance(&self, t: f64, x: &Vec3) -> f64 {
         let p = self.pose(t).inverse_transform_point(&Point3::from(*x));
         self.mesh.distance_to_local_point(to_parry(&p.coords), false)

@@ -126,6 +126,10 @@ impl Transient {
     }
 
     fn row(&self, r: usize) -> std::ops::Range<usize> {
+        debug_assert!(
+            self.is_empty() || !self.row_ptr.is_empty(),
+            "couplings added but not gathered (finish)"
+        );
         match self.row_ptr.get(r..r + 2) {
             Some(&[a, b]) => a..b,
             _ => 0..0,

@@ -96,19 +96,18 @@ impl Bvh {
     }
 
     /// Sets every node's box from the primitives' boxes, `bound(i)` that of primitive `i`.
-    /// Children follow their parents in the node list, so one backward pass does it.
     pub fn refit(&mut self, bound: impl Fn(usize) -> Aabb) {
-        for k in (0..self.nodes.len()).rev() {
-            let node = self.nodes[k];
-            self.boxes[k] = if node.count > 0 {
-                let items = &self.order[node.first as usize..(node.first + node.count) as usize];
+        let mut boxes = std::mem::take(&mut self.boxes);
+        self.fold_up(
+            &mut boxes,
+            |items| {
                 items
                     .iter()
                     .fold(Aabb::empty(), |b, &i| b.union(&bound(i as usize)))
-            } else {
-                self.boxes[k + 1].union(&self.boxes[node.right as usize])
-            };
-        }
+            },
+            Aabb::union,
+        );
+        self.boxes = boxes;
     }
 
     /// Number of nodes; the root is node 0.
@@ -144,17 +143,10 @@ impl Bvh {
     }
 
     /// Sets a value for every node from its primitives', `leaf(items)` for a leaf and
-    /// `merge(left, right)` for an inner node, into `out` (one per node).
-    pub fn fold_up<T: Copy>(
-        &self,
-        out: &mut Vec<T>,
-        leaf: impl Fn(&[u32]) -> T,
-        merge: impl Fn(&T, &T) -> T,
-    ) {
-        if out.len() != self.nodes.len() {
-            out.clear();
-            out.extend((0..self.nodes.len()).map(|k| leaf(self.subtree(k))));
-        }
+    /// `merge(left, right)` for an inner node, into `out` (one per node). Children follow
+    /// their parents in the node list, so one backward pass does it.
+    pub fn fold_up<T: Copy>(&self, out: &mut [T], leaf: impl Fn(&[u32]) -> T, merge: impl Fn(&T, &T) -> T) {
+        assert_eq!(out.len(), self.nodes.len(), "one value per node");
         for k in (0..self.nodes.len()).rev() {
             out[k] = match self.children(k) {
                 None => leaf(self.subtree(k)),

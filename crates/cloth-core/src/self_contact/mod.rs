@@ -173,12 +173,12 @@ impl SelfContacts {
         let half_thickness: Vec<f64> = (0..n)
             .map(|i| 0.5 * settings.thickness.unwrap_or_else(|| thickness(i)))
             .collect();
-        let largest = 2.0 * half_thickness.iter().copied().fold(0.0, f64::max);
-        let topology = Topology::new(mesh, seams, rest_radius(largest));
+        // The largest contact distance, within which pairs are looked for.
+        let reach = 2.0 * half_thickness.iter().copied().fold(0.0, f64::max);
+        let topology = Topology::new(mesh, seams, rest_radius(reach));
         let friction: Vec<f64> = (0..n)
             .map(|i| settings.friction.unwrap_or_else(|| friction(i)))
             .collect();
-        let reach = 2.0 * half_thickness.iter().copied().fold(0.0, f64::max);
         let touch = 0.02 * 2.0 * half_thickness.iter().copied().fold(f64::INFINITY, f64::min);
         let surface = SurfaceTree::new(&topology, mesh.positions());
         Self {
@@ -195,7 +195,8 @@ impl SelfContacts {
                 .collect(),
             friction,
             brake: vec![0.0; n],
-            braked: Vec::new(),
+            // Every particle at most: the list never grows in a step.
+            braked: Vec::with_capacity(n),
             reach,
             touch,
             surface,
@@ -406,9 +407,7 @@ impl SelfContacts {
                 b[c.particles[k] as usize] -= h * local.grad[k];
             }
         }
-        matrix.clear_transient();
         self.couple(matrix, h);
-        matrix.finish_transient();
     }
 
     /// The contacts' forces (repulsion, and friction at `v` with the drags set) added to
@@ -438,10 +437,12 @@ impl SelfContacts {
         energy
     }
 
-    /// The contacts' terms of an implicit step of length `h`, `h^2 K + h C`, as transient
-    /// couplings of `matrix`: each `(h^2 f' n n^T + h c P)` on its four particles by weight
-    /// (the element Hessians are `w_a w_b` times these).
+    /// The contacts' terms of an implicit step of length `h`, `h^2 K + h C`, as the
+    /// transient couplings of `matrix` (replacing any it had, gathered for its products):
+    /// each `(h^2 f' n n^T + h c P)` on its four particles by weight (the element Hessians
+    /// are `w_a w_b` times these).
     pub fn couple(&self, matrix: &mut BlockSparse, h: f64) {
+        matrix.clear_transient();
         for ((c, &drag), &stiffness) in self.contacts.iter().zip(&self.drag).zip(&self.normal_stiffness) {
             let nn = c.frame.normal * c.frame.normal.transpose();
             let k = (h * h * stiffness) * nn + (h * drag) * (Mat3::identity() - nn);
@@ -450,11 +451,18 @@ impl SelfContacts {
                 .map(|a| (c.particles[a] as usize, c.frame.weights[a] * Mat3::identity()));
             matrix.add_coupling(k, terms);
         }
+        matrix.finish_transient();
     }
 
     /// Counts the intersecting edge-triangle pairs of the cloth at `x` (pairs sharing a
     /// particle, or seam partners, exempt).
     pub fn intersections(&self, x: &[Vec3]) -> Intersections {
         intersections::count(&self.topology, x)
+    }
+
+    /// The smallest distance of a particle from a triangle at `x`, if under `within`
+    /// (exempt pairs as for [`SelfContacts::intersections`]).
+    pub fn closest_approach(&self, x: &[Vec3], within: f64) -> Option<f64> {
+        intersections::closest_approach(&self.topology, x, within)
     }
 }

@@ -3,7 +3,7 @@
 //! within it, each a [`Contact`] the step's solve holds at the distance.
 
 use super::bvh::Aabb;
-use super::geometry::{closest_on_segments, closest_on_triangle};
+use super::geometry::{closest_on_segments, closest_on_triangle, triangle_normal};
 use super::topology::Topology;
 use crate::energy::repulsion::ContactFrame;
 use crate::Vec3;
@@ -79,9 +79,7 @@ impl Cloth<'_> {
         }
         let normal = gap / d;
         if d >= distance {
-            let Some(h) = self.h else {
-                return None;
-            };
+            let h = self.h?;
             let closing: f64 = (0..4)
                 .map(|k| weights[k] * normal.dot(&self.v[particles[k] as usize]))
                 .sum();
@@ -146,13 +144,14 @@ impl Cloth<'_> {
         let xp = self.x[p];
         let tri = self.topology.triangles[t];
         let [a, b, c] = tri.map(|i| self.x[i as usize]);
-        if !Aabb::of([a, b, c]).overlaps(&Aabb::point(&xp).inflated(reach))
-            || self.topology.vertex_triangle_exempt(p, t)
-        {
+        if !Aabb::of([a, b, c]).overlaps(&Aabb::point(&xp).inflated(reach)) {
             return;
         }
         let w = closest_on_triangle(&xp, &a, &b, &c);
-        if (xp - (w[0] * a + w[1] * b + w[2] * c)).norm() >= reach {
+        // The exemption (fixed, but searched in the flat cloth) after the cheaper test.
+        if (xp - (w[0] * a + w[1] * b + w[2] * c)).norm() >= reach
+            || self.topology.vertex_triangle_exempt(p, t)
+        {
             return;
         }
         let zeros = w.iter().filter(|&&x| x == 0.0).count();
@@ -168,8 +167,9 @@ impl Cloth<'_> {
         // slides past and would be stopped by as by a wall, and a pair not yet in contact
         // there is not landing on the layer.
         if zeros > 0 {
-            let face = (b - a).cross(&(c - a)).normalize();
-            if face.dot(&contact.frame.normal).abs() < ACROSS_FACE || contact.gap >= contact.distance {
+            let across = triangle_normal(&a, &b, &c)
+                .is_some_and(|n| n.dot(&contact.frame.normal).abs() >= ACROSS_FACE);
+            if !across || contact.gap >= contact.distance {
                 return;
             }
         }
@@ -183,15 +183,15 @@ impl Cloth<'_> {
         let ([i, j], [k, l]) = (self.topology.edges[e], self.topology.edges[f]);
         let (p0, p1) = (self.x[i as usize], self.x[j as usize]);
         let (q0, q1) = (self.x[k as usize], self.x[l as usize]);
-        if !Aabb::of([q0, q1]).overlaps(&Aabb::of([p0, p1]).inflated(reach))
-            || self.topology.edge_edge_exempt(e, f)
-        {
+        if !Aabb::of([q0, q1]).overlaps(&Aabb::of([p0, p1]).inflated(reach)) {
             return;
         }
         let (s, t) = closest_on_segments(&p0, &p1, &q0, &q1);
         if !(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0) {
             return;
         }
-        found.extend(self.contact([i, j, k, l], [1.0 - s, s, t - 1.0, -t]));
+        // The exemption (fixed, but searched in the flat cloth) for contacts only.
+        let contact = self.contact([i, j, k, l], [1.0 - s, s, t - 1.0, -t]);
+        found.extend(contact.filter(|_| !self.topology.edge_edge_exempt(e, f)));
     }
 }

@@ -7,6 +7,7 @@ use super::ccd::{self, Impact, Paths};
 use super::cone::Cone;
 use super::contour::Motion;
 use super::surface::Search;
+use super::topology::find;
 use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
 use crate::Vec3;
 
@@ -62,6 +63,14 @@ pub(super) struct Scratch {
 }
 
 impl Scratch {
+    /// Adds `d` to how far the passes moved particle `i`.
+    fn note_shift(&mut self, i: usize, d: f64) {
+        if d > 0.0 && self.shift[i] == 0.0 {
+            self.shifted.push(i as u32);
+        }
+        self.shift[i] += d;
+    }
+
     pub fn new(n: usize) -> Self {
         Self {
             dirty: vec![false; n],
@@ -88,7 +97,6 @@ impl SelfContacts {
             self.response.shift[i as usize] = 0.0;
         }
         self.response.shifted.clear();
-        self.response.dirty.fill(true);
         for pass in 0.. {
             // Pairs ending too close are put right by impulses only; zones and the last
             // resort are for pairs passing through each other.
@@ -122,7 +130,6 @@ impl SelfContacts {
                 break;
             }
             self.response.impacts = impacts;
-            self.response.impacts.clear();
         }
         let sc = &mut self.response;
         for &i in &sc.zoned {
@@ -152,7 +159,7 @@ impl SelfContacts {
                 }
                 self.response.frozen[i] = true;
                 self.response.frozen_list.push(i as u32);
-                self.note_shift(i, (x1[i] - x0[i]).norm());
+                self.response.note_shift(i, (x1[i] - x0[i]).norm());
                 x1[i] = x0[i];
                 v1[i] = Vec3::zeros();
                 count += 1;
@@ -282,7 +289,7 @@ impl SelfContacts {
             for k in 0..4 {
                 let dx = (lambda * w[k] * inv_mass[k]) * n;
                 x1[p[k]] += dx;
-                self.note_shift(p[k], dx.norm());
+                self.response.note_shift(p[k], dx.norm());
             }
         }
         let mean = |values: &[f64]| 0.5 * (0..4).map(|k| w[k].abs() * values[p[k]]).sum::<f64>();
@@ -301,14 +308,6 @@ impl SelfContacts {
                 v1[p[k]] += (w[k] * inv_mass[k] / denom) * change;
             }
         }
-    }
-
-    fn note_shift(&mut self, i: usize, d: f64) {
-        let sc = &mut self.response;
-        if d > 0.0 && sc.shift[i] == 0.0 {
-            sc.shifted.push(i as u32);
-        }
-        sc.shift[i] += d;
     }
 
     /// Merges the particles of `impacts` into impact zones (with the zones they were in)
@@ -330,14 +329,6 @@ impl SelfContacts {
             sc.zone.clear();
             sc.zone.extend(0..n as u32);
             sc.sums.resize(n, ZoneSum::default());
-        }
-        fn find(zone: &mut [u32], mut i: u32) -> u32 {
-            while zone[i as usize] != i {
-                let up = zone[zone[i as usize] as usize];
-                zone[i as usize] = up;
-                i = up;
-            }
-            i
         }
         for c in impacts {
             let members = (0..4).filter(|&k| c.weights[k] != 0.0).map(|k| c.particles[k]);
@@ -392,11 +383,7 @@ impl SelfContacts {
             x1[i] = x0[i] + d;
             v1[i] = d / h;
             sc.dirty[i] = true;
-            let moved = (x1[i] - old).norm();
-            if moved > 0.0 && sc.shift[i] == 0.0 {
-                sc.shifted.push(i as u32);
-            }
-            sc.shift[i] += moved;
+            sc.note_shift(i, (x1[i] - old).norm());
         }
         sc.zoned.len()
     }

@@ -10,7 +10,7 @@
 use super::bvh::{Aabb, Bvh};
 use super::cone::Cone;
 use super::contour::{outer, star_shaped, Contours, Motion};
-use super::topology::Topology;
+use super::topology::{find, Topology};
 use crate::Vec3;
 
 /// Node pairs a search is split into, for the threads.
@@ -161,14 +161,6 @@ fn connected_nodes(bvh: &Bvh, topology: &Topology) -> Vec<bool> {
     let n = topology.triangles.len();
     let mut member = vec![u32::MAX; n];
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    let find = |parent: &mut Vec<u32>, mut i: u32| {
-        while parent[i as usize] != i {
-            let up = parent[parent[i as usize] as usize];
-            parent[i as usize] = up;
-            i = up;
-        }
-        i
-    };
     (0..bvh.node_count())
         .map(|k| {
             let items = bvh.subtree(k);

@@ -48,7 +48,7 @@ pub(crate) struct Topology {
 }
 
 /// The root of `i` in a union-find forest, halving the path.
-fn find(parent: &mut [u32], mut i: u32) -> u32 {
+pub(super) fn find(parent: &mut [u32], mut i: u32) -> u32 {
     while parent[i as usize] != i {
         let up = parent[parent[i as usize] as usize];
         parent[i as usize] = up;

@@ -66,7 +66,6 @@ impl Simulation {
             energy += sc.add_forces(&self.x, &self.v, &mut ws.force, &mut ws.hv);
             if with_stiffness {
                 sc.couple(&mut self.matrix, h);
-                self.matrix.finish_transient();
             }
         }
         energy
@@ -178,41 +177,35 @@ impl Simulation {
                 }
                 None => 0,
             };
-            if std::mem::take(&mut layer_friction) {
+            // After the scout, friction between layers is set from its motion, and the step
+            // solves again in any case.
+            let friction_set = std::mem::take(&mut layer_friction);
+            if friction_set {
                 let sc = self.self_contacts.as_mut().expect("layer friction has contacts");
                 for ((v_end, v), dv) in ws.v_new.iter_mut().zip(&self.v).zip(&ws.dv) {
                     *v_end = v + dv;
                 }
                 sc.friction_from_motion(&self.v, &ws.v_new, h, &mut ws.b, &mut self.matrix);
-                scouting = false;
-                pass += 1;
-                new_rhs = true;
-                if released > 0 {
-                    self.refill_filter(h)?;
-                }
-                // Friction holding layers together couples them stiffly: the hierarchy is
-                // made again with it (kept or refreshed only at its finest level, it costs
-                // more iterations than the setup saves, or is not even definite).
-                setup = Setup::Build;
-                continue;
-            }
-            if last || (released == 0 && !scouting) {
+            } else if last || (released == 0 && !scouting) {
                 break;
             }
-            new_rhs = released > 0;
-            setup = if released == 0 {
+            new_rhs = released > 0 || friction_set;
+            if released > 0 {
+                self.refill_filter(h)?;
+            }
+            setup = if friction_set || (released > 0 && self.matrix.has_transient()) {
+                // Friction holding layers together couples them stiffly, and directions
+                // freed where the cloth lies on itself are tied to the layer above, which
+                // only coarse corrections reach: the hierarchy is made again (kept or
+                // refreshed only at its finest level, it costs more iterations than the
+                // setup saves, or is not even definite).
+                Setup::Build
+            } else if released == 0 {
                 Setup::Keep
             } else {
-                self.refill_filter(h)?;
                 // The freed directions are missing from the kept coarse spaces; the cloth
-                // alone lets the smoother make them good in a few iterations, but where it
-                // lies on itself they are tied to the layer above, and only coarse
-                // corrections reach that.
-                if self.matrix.has_transient() {
-                    Setup::Build
-                } else {
-                    Setup::RefreshFinest
-                }
+                // alone lets the smoother make them good in a few iterations.
+                Setup::RefreshFinest
             };
             scouting = false;
             pass += 1;
@@ -221,16 +214,16 @@ impl Simulation {
         if let Some(contacts) = &mut self.contacts {
             // Friction predicts from this step's forces only if the solve found them.
             if stats.cg_converged {
-                let (y, z, v) = (&ws.y, &ws.z, &self.v);
+                let (dv, v) = (&ws.dv, &self.v);
                 contacts
                     .particles
-                    .record_demand(v, |j| v[j] + y[j] + z[j], self.model.masses(), h);
+                    .record_demand(v, |j| v[j] + dv[j], self.model.masses(), h);
             } else {
                 contacts.particles.forget_demand();
             }
         }
         for i in 0..self.x.len() {
-            let v: Vec3 = self.v[i] + ws.y[i] + ws.z[i];
+            let v: Vec3 = self.v[i] + ws.dv[i];
             ws.v_new[i] = v;
             ws.x_new[i] = self.x[i] + h * v;
         }

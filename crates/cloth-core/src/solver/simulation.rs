@@ -710,13 +710,16 @@ impl Simulation {
     /// The smallest distance of a particle from a triangle of the cloth now (pairs
     /// sharing a particle, or joined by a seam, exempt), if one is under `within` (m).
     pub fn closest_self_approach(&self, within: f64) -> Option<f64> {
-        crate::self_contact::closest_self_approach(
-            &self.mesh,
-            &self.seams,
-            self.self_exemption_radius(),
-            &self.x,
-            within,
-        )
+        match &self.self_contacts {
+            Some(sc) => sc.closest_approach(&self.x, within),
+            None => crate::self_contact::closest_self_approach(
+                &self.mesh,
+                &self.seams,
+                self.self_exemption_radius(),
+                &self.x,
+                within,
+            ),
+        }
     }
 
     /// The particles' contact modes in the last step (all `Free` without bodies).
