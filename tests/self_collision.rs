@@ -326,3 +326,38 @@ fn a_ramp_wound_over_itself_does_not_pass_through_its_lower_turn() {
     });
     assert!(most > 0, "no intersections without self-collision");
 }
+
+#[test]
+fn explicit_steps_push_layers_apart_too() {
+    // The stacked sheets, 2 mm apart, within a 4 mm contact distance from the start and
+    // stepped by forward Euler: the repulsion (with friction between the layers predicted
+    // from the forces) pushes them apart, and nothing passes through.
+    let setup = StackedSheets {
+        particles_per_side: 10,
+        ..StackedSheets::default()
+    };
+    let mut scene = setup.build().unwrap();
+    let thickness = 0.004;
+    let settings = SolverSettings {
+        integrator: cloth::Integrator::ExplicitEuler,
+        time_step: 5e-6,
+        self_collision: SelfCollision {
+            thickness: Some(thickness),
+            ..SelfCollision::default()
+        },
+        ..scene.simulation.settings().clone()
+    };
+    scene.simulation.set_settings(settings).unwrap();
+    let mut contacts = Vec::new();
+    run(&mut scene.simulation, 200, |sim| {
+        assert_eq!(sim.self_intersections().count, 0, "step {}", sim.step_count());
+        contacts.push(sim.self_contacts().len());
+    });
+    assert!(contacts[0] > 100, "{} contacts at the start", contacts[0]);
+    let approach = scene.simulation.closest_self_approach(thickness);
+    assert!(
+        approach.is_none_or(|d| d > setup.gap),
+        "closest approach {approach:?}, started {} apart",
+        setup.gap
+    );
+}

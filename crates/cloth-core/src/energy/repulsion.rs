@@ -80,10 +80,10 @@ impl RepulsionLaw {
 }
 
 /// The repulsion's energy, gradient and Hessian `f'(g) w_a w_b n n^T` (positive
-/// semi-definite) at positions `x`, added to `out`. Whether a pair is in contact is
+/// semi-definite) at positions `x`, added to `out`; returns the stiffness `f'(g)`. Whether a pair is in contact is
 /// decided once a step (closer than the distance, or closing in on it); within the step
 /// the contact is this spring.
-pub fn add_repulsion(frame: &ContactFrame, law: &RepulsionLaw, x: &[Vec3; 4], out: &mut Local<4>) {
+pub fn add_repulsion(frame: &ContactFrame, law: &RepulsionLaw, x: &[Vec3; 4], out: &mut Local<4>) -> f64 {
     let (energy, force, stiffness) = law.at(frame.gap(x));
     let n = frame.normal;
     out.energy += energy;
@@ -94,6 +94,7 @@ pub fn add_repulsion(frame: &ContactFrame, law: &RepulsionLaw, x: &[Vec3; 4], ou
             out.hess[a][b] += (stiffness * frame.weights[a] * frame.weights[b]) * nn;
         }
     }
+    stiffness
 }
 
 /// Friction as a viscous drag `c` against the two points' sliding past each other: the

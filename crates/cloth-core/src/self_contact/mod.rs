@@ -303,14 +303,13 @@ impl SelfContacts {
     }
 
     /// The friction each particle's contacts can exert, `L_i = sum |w| mu f` over its
-    /// contacts (`f` a contact's push), into `brake`.
-    fn gather_brakes(&mut self) {
+    /// contacts, into `brake`, from each contact's `mu f` (`f` its push) in `limits`.
+    fn gather_brakes(&mut self, limits: &[f64]) {
         for &i in &self.braked {
             self.brake[i as usize] = 0.0;
         }
         self.braked.clear();
-        for c in &self.contacts {
-            let limit = c.friction * self.law(c).at(c.gap).1.max(0.0);
+        for (c, &limit) in self.contacts.iter().zip(limits) {
             if limit == 0.0 {
                 continue;
             }
@@ -326,26 +325,33 @@ impl SelfContacts {
 
     /// Coulomb friction for each contact as a viscous drag `c` against the two points'
     /// sliding (relative, across the normal), from the sliding `u*` that the step would
-    /// end with without friction between the layers (`slide(c)`). Friction can take off
+    /// end with without friction between the layers (`slide(c, inverse masses)`). Friction can take off
     /// it what the friction of every contact on the pair's particles can,
     /// `h sum_k |w_k| L_k / m_k` (see [`SelfContacts::gather_brakes`]; pinned particles do
     /// not move): a particle lies on a layer through several contacts, and each alone
     /// would take the whole layer's friction for its own. When what is left, `s`, exceeds
     /// [`SLIP_SPEED`], `c = mu f / s` ends the pair sliding at `s` against exactly `mu f`;
     /// otherwise `c = mu f / SLIP_SPEED` holds it.
-    fn set_friction(&mut self, h: f64, slide: impl Fn(&Contact) -> f64) {
-        self.gather_brakes();
-        self.drag.clear();
-        for c in &self.contacts {
-            let limit = c.friction * self.law(c).at(c.gap).1.max(0.0);
+    fn set_friction(&mut self, h: f64, slide: impl Fn(&Contact, &[f64]) -> f64) {
+        // Each contact's limit `mu f` first, in place of its drag.
+        let mut drag = std::mem::take(&mut self.drag);
+        drag.clear();
+        drag.extend(
+            self.contacts
+                .iter()
+                .map(|c| c.friction * self.law(c).at(c.gap).1.max(0.0)),
+        );
+        self.gather_brakes(&drag);
+        for (c, d) in self.contacts.iter().zip(&mut drag) {
             let brake: f64 = (0..4)
                 .map(|k| {
                     let i = c.particles[k] as usize;
                     c.frame.weights[k].abs() * self.inv_mass[i] * self.brake[i]
                 })
                 .sum();
-            self.drag.push(limit / (slide(c) - h * brake).max(SLIP_SPEED));
+            *d /= (slide(c, &self.inv_mass) - h * brake).max(SLIP_SPEED);
         }
+        self.drag = drag;
     }
 
     /// The tangential part of the pair's relative motion `u`.
@@ -358,8 +364,7 @@ impl SelfContacts {
     /// the sliding without it predicted pair by pair, `u + h sum_k w_k F_k / m_k`, and the
     /// drag capped at what forward Euler integrates stably.
     pub fn explicit_friction(&mut self, v: &[Vec3], force: &[Vec3], h: f64) {
-        let inv_mass = std::mem::take(&mut self.inv_mass);
-        self.set_friction(h, |c| {
+        self.set_friction(h, |c, inv_mass| {
             let pull: Vec3 = (0..4)
                 .map(|k| {
                     let i = c.particles[k] as usize;
@@ -371,11 +376,10 @@ impl SelfContacts {
         for (c, drag) in self.contacts.iter().zip(&mut self.drag) {
             // Forward Euler damps a drag c on mass m only while h c / m < 2.
             let mobility: f64 = (0..4)
-                .map(|k| c.frame.weights[k].powi(2) * inv_mass[c.particles[k] as usize])
+                .map(|k| c.frame.weights[k].powi(2) * self.inv_mass[c.particles[k] as usize])
                 .sum();
             *drag = drag.min(0.5 / (h * mobility));
         }
-        self.inv_mass = inv_mass;
     }
 
     /// An implicit step's friction, none at first: it is set after a scouting solve
@@ -399,7 +403,7 @@ impl SelfContacts {
         b: &mut [Vec3],
         matrix: &mut BlockSparse,
     ) {
-        self.set_friction(h, |c| Self::sliding(c, c.frame.relative(&c.gather(v_end))));
+        self.set_friction(h, |c, _| Self::sliding(c, c.frame.relative(&c.gather(v_end))));
         for (c, &drag) in self.contacts.iter().zip(&self.drag) {
             let mut local = Local::<4>::default();
             add_friction_drag(&c.frame, drag, &c.gather(v0), &mut local);
@@ -421,7 +425,7 @@ impl SelfContacts {
             friction.clear();
             let (xe, ve) = (c.gather(x), c.gather(v));
             let law = self.law(c);
-            add_repulsion(&c.frame, &law, &xe, &mut spring);
+            let stiffness = add_repulsion(&c.frame, &law, &xe, &mut spring);
             add_friction_drag(&c.frame, drag, &ve, &mut friction);
             // A pair landing from beyond the distance has none yet.
             if c.gap < c.distance {
@@ -432,7 +436,7 @@ impl SelfContacts {
                 force[i] -= spring.grad[a] + friction.grad[a];
                 kv[i] += (0..4).map(|b| spring.hess[a][b] * ve[b]).sum::<Vec3>();
             }
-            self.normal_stiffness.push(law.at(c.frame.gap(&xe)).2);
+            self.normal_stiffness.push(stiffness);
         }
         energy
     }
