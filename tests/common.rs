@@ -21,3 +21,12 @@ pub fn two_corner_sheet(n: usize, size: f64, fabric: Fabric, settings: SolverSet
 pub fn max_distance(a: &[Vec3], b: &[Vec3]) -> f64 {
     a.iter().zip(b).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max)
 }
+
+/// `f` run in a rayon pool of `threads` threads.
+pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+        .install(f)
+}

@@ -112,11 +112,7 @@ fn explicit_euler_at_a_stable_step_reaches_the_implicit_rest_shape() {
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        common::on_threads(threads, || {
             // A horizontal sheet falling from two corners: large motion, folds.
             let mesh = GridBuilder::new(40, 40).size(1.0, 1.0).build().unwrap();
             let g = mesh.grid().unwrap();

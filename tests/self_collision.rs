@@ -2,6 +2,8 @@
 //! apart by their thickness, and friction between layers follows Coulomb's law. Each
 //! scene is also run with self-collision off where that shows the test can fail.
 
+mod common;
+
 use cloth::scenes::{FoldingStrip, Scene, SheetOntoSheet, StackedSheets};
 use cloth::{
     ClothMesh, Fabric, GridBuilder, Pin, SelfCollision, Simulation, SimulationBuilder, SolverSettings, Vec3,
@@ -205,11 +207,7 @@ fn friction_between_layers_holds_below_the_angle_of_repose_and_slides_by_coulomb
 #[test]
 fn layers_in_contact_give_the_same_result_on_any_number_of_threads() {
     let run_on = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        common::on_threads(threads, || {
             let mut scene = StackedSheets {
                 particles_per_side: 15,
                 ..StackedSheets::default()
