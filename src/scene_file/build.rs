@@ -3,15 +3,16 @@
 //! `cloth run` would trip on.
 
 use super::cloth_file::read_cloth_obj;
+use super::frame::{placement, UpAxis};
 use super::records::{BodySpec, ClothSpec, FabricSpec, SceneFile};
+use super::warning::SceneWarning;
 use super::SceneFileError;
 use crate::collide::{Bodies, Body, TriSurface};
 use crate::garment::mannequin::Mannequin;
-use crate::garment::{garmentcode, Garment, GarmentBuilder, Pattern, PlacementWarning};
+use crate::garment::{garmentcode, Garment, GarmentBuilder, Pattern};
 use crate::presets::FabricLibrary;
 use crate::validation::{Cantilever, CusickTest};
 use cloth_core::{Fabric, GridBuilder, GridShape, Pin, SimulationBuilder, Vec3};
-use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -20,8 +21,9 @@ pub struct Prepared {
     pub name: String,
     pub cloth: PreparedCloth,
     pub bodies: Arc<Bodies>,
-    /// Panels starting inside a body: the run goes on, the user is told the fix.
-    pub warnings: Vec<PlacementWarning>,
+    /// What the scene loads with that the user should know (imperfect body meshes,
+    /// gathered seams, panels starting inside a body): the run goes on.
+    pub warnings: Vec<SceneWarning>,
 }
 
 pub enum PreparedCloth {
@@ -74,12 +76,20 @@ impl SceneFile {
         fabric.validate().map_err(param)?;
 
         let mut bodies = Vec::with_capacity(self.bodies.len());
+        let mut warnings = Vec::new();
         for (k, spec) in self.bodies.iter().enumerate() {
-            bodies.extend(spec.build(file, dir, &format!("bodies[{k}]"))?);
+            let built = spec.build(file, dir, &format!("bodies[{k}]"))?;
+            for body in &built {
+                warnings.extend(body.surface().defects().iter().map(|d| SceneWarning::Body {
+                    body: format!("bodies[{k}] '{}'", body.name()),
+                    defect: d.clone(),
+                }));
+            }
+            bodies.extend(built);
         }
         let bodies = Arc::new(Bodies::new(bodies));
 
-        let (cloth, warnings) = match &self.cloth {
+        let cloth = match &self.cloth {
             ClothSpec::Garment { pattern, edge_length } => {
                 let path = dir.join(pattern);
                 let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
@@ -88,6 +98,7 @@ impl SceneFile {
                 } else {
                     Pattern::from_toml_path(&path)?
                 };
+                warnings.extend(pattern.gathers().into_iter().map(SceneWarning::Gather));
                 let garment = GarmentBuilder::new(pattern)
                     .edge_length(*edge_length)
                     .file(path.display().to_string())
@@ -99,14 +110,16 @@ impl SceneFile {
                             file: path.display().to_string(),
                             source,
                         })?;
-                let warnings = garment.placement_warnings(&bodies);
-                (
-                    PreparedCloth::Garment {
-                        garment: Box::new(garment),
-                        fabrics,
-                    },
-                    warnings,
-                )
+                warnings.extend(
+                    garment
+                        .placement_warnings(&bodies)
+                        .into_iter()
+                        .map(SceneWarning::Placement),
+                );
+                PreparedCloth::Garment {
+                    garment: Box::new(garment),
+                    fabrics,
+                }
             }
             ClothSpec::Grid {
                 nx,
@@ -137,20 +150,23 @@ impl SceneFile {
                     }
                     builder = builder.pin(Pin::fixed(g.index(i, j)));
                 }
-                (sheet(builder, self, &bodies, None), Vec::new())
+                sheet(builder, self, &bodies, None)
             }
             ClothSpec::Mesh {
                 file: mesh_file,
                 scale,
                 uv_scale,
+                up_axis,
+                rotation,
                 position,
                 pins,
             } => {
                 let path = dir.join(mesh_file);
-                let mesh =
-                    read_cloth_obj(&path, *scale, *uv_scale, Vec3::from(*position)).map_err(|reason| {
-                        invalid("cloth.mesh.file", format!("'{}': {reason}", path.display()))
-                    })?;
+                let placed = placement(*up_axis, *rotation, *position)
+                    .map_err(|reason| invalid("cloth.mesh.rotation", reason))?;
+                let mesh = read_cloth_obj(&path, *scale, *uv_scale, &placed).map_err(|reason| {
+                    invalid("cloth.mesh.file", format!("'{}': {reason}", path.display()))
+                })?;
                 let n = mesh.vertex_count();
                 if let Some((k, i)) = pins.iter().enumerate().find(|(_, &i)| i >= n) {
                     return Err(invalid(
@@ -159,7 +175,7 @@ impl SceneFile {
                     ));
                 }
                 let builder = SimulationBuilder::new(mesh, fabric).pins(pins.iter().map(|&i| Pin::fixed(i)));
-                (sheet(builder, self, &bodies, None), Vec::new())
+                sheet(builder, self, &bodies, None)
             }
             ClothSpec::Cusick { edge_length, damping } => {
                 let mut test = CusickTest::new(fabric);
@@ -168,7 +184,7 @@ impl SceneFile {
                 let builder = test
                     .simulation_builder()
                     .map_err(|e| invalid("cloth.cusick", e.to_string()))?;
-                (sheet(builder, self, &bodies, Some(SheetTest::Cusick)), Vec::new())
+                sheet(builder, self, &bodies, Some(SheetTest::Cusick))
             }
             ClothSpec::Cantilever { overhang, cells } => {
                 if !(overhang.is_finite() && *overhang > 0.0) || *cells < 2 {
@@ -185,17 +201,14 @@ impl SceneFile {
                 let (builder, grid) = test
                     .simulation_builder()
                     .map_err(|e| invalid("cloth.cantilever", e.to_string()))?;
-                (
-                    sheet(
-                        builder,
-                        self,
-                        &bodies,
-                        Some(SheetTest::Cantilever {
-                            test: Box::new(test),
-                            grid,
-                        }),
-                    ),
-                    Vec::new(),
+                sheet(
+                    builder,
+                    self,
+                    &bodies,
+                    Some(SheetTest::Cantilever {
+                        test: Box::new(test),
+                        grid,
+                    }),
                 )
             }
         };
@@ -307,10 +320,16 @@ impl BodySpec {
         } else {
             unreachable!("exactly one shape was checked above")
         };
-        let pose = Isometry3::from_parts(
-            Translation3::from(Vec3::from(self.position)),
-            UnitQuaternion::identity(),
-        );
+        let up = match (self.up_axis, &self.file) {
+            (Some(up), _) => up,
+            (None, Some(path)) => UpAxis::of_file(path),
+            (None, None) => UpAxis::Z,
+        };
+        let pose = placement(up, self.rotation, self.position).map_err(|reason| SceneFileError::Invalid {
+            file: file.into(),
+            key: format!("{key}.rotation"),
+            reason,
+        })?;
         let body_error = |source| SceneFileError::Body {
             file: file.into(),
             key: key.clone(),

@@ -2,22 +2,32 @@
 //! a file without them must be flat and is its own rest shape.
 
 use cloth_core::{ClothMesh, Vec3};
-use nalgebra::Vector2;
+use nalgebra::{Isometry3, Point3, Vector2};
 use std::path::Path;
 
 /// How far from its best plane a mesh without texture coordinates may be, relative to its
 /// size.
 const FLAT_TOLERANCE: f64 = 1e-6;
 
-/// Reads `path` (positions times `scale` then moved by `offset`, texture coordinates times
-/// `uv_scale`, both to metres). Particles are the file's vertices in the file's order, so
+/// Reads `path` (positions times `scale` then placed by `placement`, texture coordinates
+/// times `uv_scale`, both to metres). Particles are the file's vertices in the file's order, so
 /// pins and arrays can name them by their numbers (tobj renumbers vertices in the order
 /// faces use them, which is why the file is read here). Polygons are fanned into
 /// triangles. Errors say what is wrong and on which line; the caller adds the file.
-pub fn read_cloth_obj(path: &Path, scale: f64, uv_scale: f64, offset: Vec3) -> Result<ClothMesh, String> {
+pub fn read_cloth_obj(
+    path: &Path,
+    scale: f64,
+    uv_scale: f64,
+    placement: &Isometry3<f64>,
+) -> Result<ClothMesh, String> {
     let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
     let obj = parse_obj(&text)?;
-    let positions: Vec<Vec3> = obj.vertices.iter().map(|p| scale * p + offset).collect();
+    // The rest shape of a flat file is its own, wherever it is placed.
+    let unplaced: Vec<Vec3> = obj.vertices.iter().map(|p| scale * p).collect();
+    let positions: Vec<Vec3> = unplaced
+        .iter()
+        .map(|p| (placement * Point3::from(*p)).coords)
+        .collect();
     if obj.faces.is_empty() {
         return Err("no faces".into());
     }
@@ -59,7 +69,7 @@ pub fn read_cloth_obj(path: &Path, scale: f64, uv_scale: f64, offset: Vec3) -> R
              write faces as f v/vt"
         ));
     }
-    let uv = flat_coordinates(&positions)?;
+    let uv = flat_coordinates(&unplaced)?;
     ClothMesh::new(positions, uv, triangles).map_err(|e| e.to_string())
 }
 
@@ -214,10 +224,10 @@ mod tests {
             "uv.obj",
             "v 0 0 1\nv 1 0 1\nv 1 1 1.2\nv 0 1 1.2\nvt 0 0\nvt 0.5 0\nvt 0.5 0.5\nvt 0 0.5\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
         );
-        let mesh = read_cloth_obj(&path, 1.0, 1.0, Vec3::zeros()).unwrap();
+        let mesh = read_cloth_obj(&path, 1.0, 1.0, &Isometry3::identity()).unwrap();
         assert_eq!(mesh.vertex_count(), 4);
         assert!((mesh.total_rest_area() - 0.25).abs() < 1e-12);
-        let scaled = read_cloth_obj(&path, 1.0, 2.0, Vec3::zeros()).unwrap();
+        let scaled = read_cloth_obj(&path, 1.0, 2.0, &Isometry3::identity()).unwrap();
         assert!((scaled.total_rest_area() - 1.0).abs() < 1e-12);
     }
 
@@ -227,7 +237,7 @@ mod tests {
             "flat.obj",
             "v 0 0 2\nv 0.3 0 2\nv 0.3 0.2 2\nv 0 0.2 2\nf 1 2 3\nf 1 3 4\n",
         );
-        let mesh = read_cloth_obj(&flat, 1.0, 1.0, Vec3::zeros()).unwrap();
+        let mesh = read_cloth_obj(&flat, 1.0, 1.0, &Isometry3::identity()).unwrap();
         assert!((mesh.total_rest_area() - 0.06).abs() < 1e-12);
         // The warp (u) runs along x.
         let uv = mesh.uv();
@@ -236,10 +246,10 @@ mod tests {
             "bent.obj",
             "v 0 0 0\nv 1 0 0\nv 1 1 0.3\nv 0 1 0\nf 1 2 3\nf 1 3 4\n",
         );
-        let e = read_cloth_obj(&bent, 1.0, 1.0, Vec3::zeros()).unwrap_err();
+        let e = read_cloth_obj(&bent, 1.0, 1.0, &Isometry3::identity()).unwrap_err();
         assert!(e.contains("not flat") && e.contains("vt"), "{e}");
         let bad = write("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
-        let e = read_cloth_obj(&bad, 1.0, 1.0, Vec3::zeros()).unwrap_err();
+        let e = read_cloth_obj(&bad, 1.0, 1.0, &Isometry3::identity()).unwrap_err();
         assert!(e.contains("line 3") && e.contains("vertex 7"), "{e}");
     }
 
@@ -252,7 +262,7 @@ mod tests {
             "o sheet\nv 0 0.1 1\nv 0.1 0.1 1\nv 0.1 0 1\nv 0 0 1\nv 0.05 -0.1 1\nvn 0 0 1\n\
              g a\nf 4//1 3//1 2//1 1//1\nf -3 -2 -1\n",
         );
-        let mesh = read_cloth_obj(&path, 1.0, 1.0, Vec3::zeros()).unwrap();
+        let mesh = read_cloth_obj(&path, 1.0, 1.0, &Isometry3::identity()).unwrap();
         assert_eq!(mesh.vertex_count(), 5);
         assert_eq!(mesh.positions()[4], Vec3::new(0.05, -0.1, 1.0));
         assert_eq!(mesh.positions()[0], Vec3::new(0.0, 0.1, 1.0));
@@ -262,10 +272,10 @@ mod tests {
     #[test]
     fn loose_vertices_and_unused_texture_coordinates_are_named() {
         let loose = write("loose.obj", "v 0 0 0\nv 1 0 0\nv 9 9 9\nv 0 1 0\nf 1 2 4\n");
-        let e = read_cloth_obj(&loose, 1.0, 1.0, Vec3::zeros()).unwrap_err();
+        let e = read_cloth_obj(&loose, 1.0, 1.0, &Isometry3::identity()).unwrap_err();
         assert!(e.contains("line 3") && e.contains("vertex 3"), "{e}");
         let unused = write("unused_vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1 2 3\n");
-        let e = read_cloth_obj(&unused, 1.0, 1.0, Vec3::zeros()).unwrap_err();
+        let e = read_cloth_obj(&unused, 1.0, 1.0, &Isometry3::identity()).unwrap_err();
         assert!(e.contains("line 4") && e.contains("f v/vt"), "{e}");
     }
 }

@@ -6,22 +6,26 @@ mod build;
 mod cloth_file;
 mod error;
 mod folder;
+mod frame;
 mod observer;
 mod recorder;
 mod records;
 mod report;
 mod run;
+mod warning;
 
 pub use build::{Prepared, PreparedCloth, SheetTest};
 pub use cloth_file::read_cloth_obj;
 pub use error::SceneFileError;
 pub use folder::{claim_output_folder, FolderRun, RunFolderError};
+pub use frame::{placement, UpAxis};
 pub use observer::RunObserver;
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
 pub use report::{
     Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, StrainSummary,
 };
 pub use run::RunResult;
+pub use warning::SceneWarning;
 
 use std::path::{Path, PathBuf};
 

@@ -1,5 +1,6 @@
 //! The scene file's records, as serde reads them.
 
+use super::frame::UpAxis;
 use crate::collide::SurfaceOptions;
 use crate::garment::mannequin::Measurements;
 use crate::garment::sewing::{DrapeSettings, SewingSettings};
@@ -87,13 +88,18 @@ pub enum ClothSpec {
     /// A sheet from a triangle mesh file (OBJ). Its texture coordinates (`vt`, times
     /// `uv_scale` to metres) are the material coordinates, the warp along u; a file without
     /// them must be flat, and is its own rest shape with the warp along x. `pins` are vertex
-    /// numbers (from 0) held where they start; the cloth is moved by `position`.
+    /// numbers (from 0) held where they start; the cloth is turned from `up_axis` to z up,
+    /// then by `rotation`, then moved by `position` (as a body's file is).
     Mesh {
         file: PathBuf,
         #[serde(default = "one")]
         scale: f64,
         #[serde(default = "one")]
         uv_scale: f64,
+        #[serde(default = "z_up")]
+        up_axis: UpAxis,
+        #[serde(default)]
+        rotation: [f64; 3],
         #[serde(default)]
         position: [f64; 3],
         #[serde(default)]
@@ -116,6 +122,9 @@ pub enum ClothSpec {
 
 fn one() -> f64 {
     1.0
+}
+fn z_up() -> UpAxis {
+    UpAxis::Z
 }
 fn cusick_edge_length() -> f64 {
     0.0075
@@ -144,17 +153,23 @@ pub struct FabricSpec {
     pub kes: Option<KesMeasurement>,
 }
 
-/// A rigid body: a generated mannequin, a mesh file, or a primitive (exactly one), placed
-/// at `position`.
+/// A rigid body: a generated mannequin, a mesh file, or a primitive (exactly one), turned
+/// by `rotation` and placed at `position`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
     pub name: Option<String>,
     pub mannequin: Option<Measurements>,
-    /// An OBJ or STL file.
+    /// An OBJ, STL, PLY, glTF or GLB file.
     pub file: Option<PathBuf>,
     /// Scale applied to the file's coordinates (0.01 for centimetres).
     pub scale: Option<f64>,
+    /// The file's up axis, turned to our z (y: (x, y, z) -> (x, -z, y)); glTF files are y-up
+    /// unless this says otherwise, other formats z-up.
+    pub up_axis: Option<UpAxis>,
+    /// Degrees about x, then y, then z (after the up axis is turned to z).
+    #[serde(default)]
+    pub rotation: [f64; 3],
     pub sphere: Option<SphereSpec>,
     #[serde(rename = "box")]
     pub cuboid: Option<BoxSpec>,

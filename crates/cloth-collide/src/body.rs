@@ -2,7 +2,7 @@
 //! properties.
 
 use crate::convert::{from_parry, to_parry};
-use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
+use crate::surface::{SharpFeature as SurfaceFeature, TriSurface, WindingTree};
 use crate::Motion;
 use cloth_core::self_contact::geometry::segment_crosses_triangle;
 use cloth_core::Vec3;
@@ -36,7 +36,11 @@ pub struct BodyError {
 pub struct Body {
     name: String,
     surface: TriSurface,
+    /// The surface's triangles the cloth can reach (those inside other parts left out).
     mesh: TriMesh,
+    /// Inside/outside for a surface that is not watertight; `None`: the pseudonormals of
+    /// `mesh` answer it.
+    winding: Option<WindingTree>,
     sharp: Vec<SurfaceFeature>,
     sharp_angle: f64,
     shading: Shading,
@@ -63,18 +67,30 @@ impl Body {
     /// A static body at the identity pose with the default contact properties.
     pub fn new(name: impl Into<String>, surface: TriSurface) -> Self {
         let vertices = surface.vertices().iter().map(to_parry).collect();
-        let indices = surface.triangles().to_vec();
-        // A TriSurface is closed and outward by construction, so ORIENTED's pseudo-normals
-        // give a sound inside/outside answer.
-        let mesh = TriMesh::with_flags(vertices, indices, TriMeshFlags::ORIENTED)
-            .expect("a TriSurface has triangles");
+        let reachable: Vec<[u32; 3]> = (0..surface.triangles().len())
+            .filter(|&t| !surface.is_buried(t))
+            .map(|t| surface.triangles()[t])
+            .collect();
+        // A watertight surface's pseudonormals give a sound inside/outside answer; any other
+        // asks its winding number.
+        let (flags, winding) = if surface.is_watertight() {
+            (TriMeshFlags::ORIENTED, None)
+        } else {
+            (
+                TriMeshFlags::empty(),
+                Some(WindingTree::new(surface.vertices(), surface.triangles())),
+            )
+        };
+        let mesh = TriMesh::with_flags(vertices, reachable.clone(), flags)
+            .expect("a TriSurface has triangles outside its other parts");
         let radius = surface.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max);
-        let sharp = surface.sharp_features(DEFAULT_SHARP_ANGLE);
-        let shading = Shading::new(&surface, &sharp, DEFAULT_SHARP_ANGLE);
+        let sharp = reachable_features(&surface, &reachable, DEFAULT_SHARP_ANGLE);
+        let shading = Shading::new(surface.vertices(), &reachable, &sharp, DEFAULT_SHARP_ANGLE);
         Self {
             name: name.into(),
             surface,
             mesh,
+            winding,
             sharp,
             sharp_angle: DEFAULT_SHARP_ANGLE,
             shading,
@@ -169,8 +185,9 @@ impl Body {
     pub fn with_sharp_angle(mut self, angle: f64) -> Result<Self, BodyError> {
         self.check(angle > 0.0, "sharp_angle", angle, "a positive angle in radians")?;
         self.sharp_angle = angle;
-        self.sharp = self.surface.sharp_features(angle);
-        self.shading = Shading::new(&self.surface, &self.sharp, angle);
+        let reachable: Vec<[u32; 3]> = self.mesh.indices().to_vec();
+        self.sharp = reachable_features(&self.surface, &reachable, angle);
+        self.shading = Shading::new(self.surface.vertices(), &reachable, &self.sharp, angle);
         Ok(self)
     }
 
@@ -228,8 +245,23 @@ impl Body {
     /// Signed distance of `x` from the surface at time `t` (negative inside), with no
     /// distance limit.
     pub fn signed_distance(&self, t: f64, x: &Vec3) -> f64 {
-        let p = self.pose(t).inverse_transform_point(&Point3::from(*x));
-        self.mesh.distance_to_local_point(to_parry(&p.coords), false)
+        let p = self.pose(t).inverse_transform_point(&Point3::from(*x)).coords;
+        let proj = self.mesh.project_local_point(to_parry(&p), false);
+        let distance = (p - from_parry(proj.point)).norm();
+        if self.inside(&p, proj.is_inside) {
+            -distance
+        } else {
+            distance
+        }
+    }
+
+    /// Whether the local point `p` is inside: the winding number's answer, or else the
+    /// pseudonormals' (`pseudo`, from the projection onto the mesh).
+    fn inside(&self, p: &Vec3, pseudo: bool) -> bool {
+        match &self.winding {
+            Some(tree) => tree.winding_number(p) >= 0.5,
+            None => pseudo,
+        }
     }
 
     /// The first entry into the body along the straight path from `x0` (at `t0`) to `x1`
@@ -283,7 +315,11 @@ impl Body {
         let q = from_parry(proj.point);
         let offset = p1 - q;
         let distance = offset.norm();
-        let sign = if proj.is_inside { -1.0 } else { 1.0 };
+        let sign = if self.inside(&p1, proj.is_inside) {
+            -1.0
+        } else {
+            1.0
+        };
         let normal = match self.shading.normal(&self.mesh, triangle, &location) {
             Some(smooth) => smooth,
             None if distance > 1e-9 * self.radius.max(1e-3) => sign * offset / distance,
@@ -297,6 +333,16 @@ impl Body {
             entry: 1.0,
         })
     }
+}
+
+/// The sharp edges and corners of `surface` on its `reachable` triangles: those of parts
+/// buried inside others are out of the cloth's reach.
+fn reachable_features(surface: &TriSurface, reachable: &[[u32; 3]], angle: f64) -> Vec<SurfaceFeature> {
+    let mut used = vec![false; surface.vertices().len()];
+    reachable.iter().flatten().for_each(|&i| used[i as usize] = true);
+    let mut features = surface.sharp_features(angle);
+    features.retain(|f| used[f.a as usize] && used[f.b as usize]);
+    features
 }
 
 /// The contact normal over a tessellated smooth surface. The distance field's own gradient
@@ -314,8 +360,7 @@ struct Shading {
 }
 
 impl Shading {
-    fn new(surface: &TriSurface, sharp: &[SurfaceFeature], angle: f64) -> Self {
-        let (v, t) = (surface.vertices(), surface.triangles());
+    fn new(v: &[Vec3], t: &[[u32; 3]], sharp: &[SurfaceFeature], angle: f64) -> Self {
         let face_normal = |tri: &[u32; 3]| {
             let [a, b, c] = tri.map(|i| v[i as usize]);
             (b - a).cross(&(c - a)).normalize()

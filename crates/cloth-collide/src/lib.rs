@@ -15,4 +15,4 @@ pub mod surface;
 pub use bodies::Bodies;
 pub use body::{Body, BodyError, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS};
 pub use motion::Motion;
-pub use surface::{SurfaceError, SurfaceOptions, TriSurface};
+pub use surface::{SurfaceDefect, SurfaceError, SurfaceOptions, TriSurface};

@@ -19,5 +19,5 @@ pub mod sewing;
 
 pub use garment::{Garment, GarmentBuilder, GarmentError, PlacementWarning};
 pub use pattern::{
-    Curve, Edge, Panel, Pattern, PatternError, Placement, Seam, SeamOrientation, SeamSide, Wrap,
+    Curve, Edge, Gather, Panel, Pattern, PatternError, Placement, Seam, SeamOrientation, SeamSide, Wrap,
 };

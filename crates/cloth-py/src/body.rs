@@ -65,6 +65,13 @@ impl Body {
         Ok(Self { name, parts })
     }
 
+    fn defects(&self) -> Vec<String> {
+        self.parts
+            .iter()
+            .flat_map(|b| b.surface().defects().iter().map(ToString::to_string))
+            .collect()
+    }
+
     fn surface(&self) -> TriSurface {
         let surfaces: Vec<TriSurface> = self.parts.iter().map(|b| b.surface_at(0.0)).collect();
         TriSurface::merged(&surfaces)
@@ -88,29 +95,54 @@ fn floats(v: &[f64]) -> toml::Value {
 
 #[pymethods]
 impl Body {
-    /// An OBJ or STL file (`scale` 0.01 for centimetres). A surface that is not closed and
-    /// consistently oriented raises ValueError naming the file and the edge.
+    /// An OBJ, STL, PLY, glTF or GLB file (`scale` 0.01 for centimetres), turned from its
+    /// `up_axis` ("y" or "z"; glTF's is "y" when not given, the others' "z") to z up, then by
+    /// `rotation` (degrees about x, then y, then z), then moved to `position`. A mesh with
+    /// holes, stray edges or overlapping parts loads with a warning for each kind of
+    /// defect (see `defects`); one that encloses nothing raises ValueError naming the file.
     #[staticmethod]
-    #[pyo3(signature = (path, *, scale = 1.0, position = None, thickness = None, friction = None, name = None))]
+    #[pyo3(signature = (path, *, scale = 1.0, up_axis = None, rotation = None, position = None, thickness = None, friction = None, name = None))]
+    #[allow(clippy::too_many_arguments)]
     fn load(
+        py: Python<'_>,
         path: std::path::PathBuf,
         scale: f64,
+        up_axis: Option<&str>,
+        rotation: Option<&Bound<'_, PyAny>>,
         position: Option<&Bound<'_, PyAny>>,
         thickness: Option<f64>,
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
         let file = toml::Value::String(path.display().to_string());
-        let extra = [("scale".to_string(), toml::Value::Float(scale))]
+        let mut extra: toml::Table = [("scale".to_string(), toml::Value::Float(scale))]
             .into_iter()
             .collect();
+        if let Some(up) = up_axis {
+            extra.insert("up_axis".into(), toml::Value::String(up.to_string()));
+        }
+        if let Some(r) = rotation {
+            extra.insert("rotation".into(), to_toml(r, "rotation")?);
+        }
         let common = Common {
             position,
             thickness,
             friction,
             name,
         };
-        Self::build("file", file, extra, common, Path::new("."))
+        let body = Self::build("file", file, extra, common, Path::new("."))?;
+        let warnings = py.import("warnings")?;
+        for d in body.defects() {
+            warnings.call_method1("warn", (format!("{}: {d}", path.display()),))?;
+        }
+        Ok(body)
+    }
+
+    /// What loading found wrong with the mesh and did about it, one line per kind of
+    /// defect (empty for a watertight mesh).
+    #[getter(defects)]
+    fn defect_list(&self) -> Vec<String> {
+        self.defects()
     }
 
     /// A sphere of `radius` centred on `position`.

@@ -126,3 +126,8 @@ pub fn json_to_python<'py, T: Serialize>(py: Python<'py>, record: &T) -> PyResul
         .map_err(|e| PyValueError::new_err(format!("cannot convert to Python: {e}")))?;
     py.import("json")?.call_method1("loads", (text,))
 }
+
+/// `"y"` or `"z"` as the scene file reads `up_axis`.
+pub fn up_axis(value: &str) -> PyResult<cloth::scene_file::UpAxis> {
+    from_toml_value(toml::Value::String(value.to_string()), "up_axis")
+}

@@ -60,12 +60,25 @@ impl ClothMesh {
 
     /// An OBJ file, as a scene's `[cloth.mesh]`: its `vt` times `uv_scale` are the material
     /// coordinates; a file without them must be flat, and is its own rest shape with the
-    /// warp along x. Coordinates are multiplied by `scale`, then moved by `position`.
+    /// warp along x. Coordinates are multiplied by `scale`, turned from `up_axis` ("y" or
+    /// "z") to z up, then by `rotation` (degrees about x, then y, then z), then moved by
+    /// `position`.
     #[staticmethod]
-    #[pyo3(signature = (path, *, scale = 1.0, uv_scale = 1.0, position = None))]
-    fn load(path: PathBuf, scale: f64, uv_scale: f64, position: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+    #[pyo3(signature = (path, *, scale = 1.0, uv_scale = 1.0, up_axis = "z", rotation = None, position = None))]
+    fn load(
+        path: PathBuf,
+        scale: f64,
+        uv_scale: f64,
+        up_axis: &str,
+        rotation: Option<&Bound<'_, PyAny>>,
+        position: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
         let offset = position.map_or(Ok(Vec3::zeros()), |p| point(p, "position"))?;
-        let mesh = cloth::scene_file::read_cloth_obj(&path, scale, uv_scale, offset)
+        let turn = rotation.map_or(Ok(Vec3::zeros()), |r| point(r, "rotation"))?;
+        let up = crate::convert::up_axis(up_axis)?;
+        let placed = cloth::scene_file::placement(up, turn.into(), offset.into())
+            .map_err(|reason| input(format!("rotation: {reason}")))?;
+        let mesh = cloth::scene_file::read_cloth_obj(&path, scale, uv_scale, &placed)
             .map_err(|reason| input(format!("'{}': {reason}", path.display())))?;
         Ok(Self { inner: mesh })
     }

@@ -5,11 +5,11 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-/// A rigid-body surface that cannot be built or read.
+/// A rigid-body surface that cannot be built or read: one that could have no inside.
+/// Imperfect meshes load with [`SurfaceDefect`](super::SurfaceDefect)s instead.
 ///
-/// Vertex indices refer to the vertices as given (after welding, the first of the merged
-/// vertices); for a file, as the reader numbered them (tobj renumbers in order of first use,
-/// STL has three per facet), so the positions, in metres after scaling, are what find them.
+/// Vertex and triangle indices refer to the mesh as given; for a file, as the reader
+/// numbered them (STL has three vertices per facet).
 #[derive(Debug, Error)]
 pub enum SurfaceError {
     #[error("cannot read {}: {source}", path.display())]
@@ -20,7 +20,7 @@ pub enum SurfaceError {
         line: Option<usize>,
         message: String,
     },
-    #[error("{}: unknown mesh format; use a .obj or .stl file", path.display())]
+    #[error("{}: unknown mesh format; use a .obj, .stl, .ply, .gltf or .glb file", path.display())]
     UnknownFormat { path: PathBuf },
     #[error("{}: {source}", path.display())]
     InFile {
@@ -41,55 +41,12 @@ pub enum SurfaceError {
         count: usize,
     },
     #[error(
-        "triangle {triangle} has zero area ({area:.3e} m^2) after welding vertices within \
-         {weld_distance:.3e} m: remove it, or lower weld_distance if welding collapsed it"
+        "all {triangles} triangles have zero area after joining open vertices within \
+         {weld_distance:.3e} m: a body needs a surface that encloses something"
     )]
-    Degenerate {
-        triangle: usize,
-        area: f64,
-        weld_distance: f64,
-    },
+    Degenerate { triangles: usize, weld_distance: f64 },
     #[error(
-        "edge from vertex {a} at {a_at:?} to vertex {b} at {b_at:?} is shared by {count} triangles \
-         (a closed surface has exactly 2): split the mesh into separate closed surfaces"
-    )]
-    NonManifold {
-        a: usize,
-        b: usize,
-        count: usize,
-        a_at: [f64; 3],
-        b_at: [f64; 3],
-    },
-    #[error(
-        "edge from vertex {a} at {a_at:?} to vertex {b} at {b_at:?} belongs to one triangle only: \
-         the surface is open ({boundary_edges} boundary edges); close the holes, or raise \
-         weld_distance if the gaps are tiny"
-    )]
-    Open {
-        a: usize,
-        b: usize,
-        boundary_edges: usize,
-        a_at: [f64; 3],
-        b_at: [f64; 3],
-    },
-    #[error(
-        "the two triangles on the edge from vertex {a} at {a_at:?} to vertex {b} at {b_at:?} run \
-         along it in the same direction: orientation is inconsistent; reorient the faces \
-         (e.g. 'recalculate normals' in a mesh editor)"
-    )]
-    Inconsistent {
-        a: usize,
-        b: usize,
-        a_at: [f64; 3],
-        b_at: [f64; 3],
-    },
-    #[error(
-        "the closed surface containing triangle {triangle} is oriented inward (signed volume \
-         {volume:.3e} m^3): reverse its triangles or set SurfaceOptions::flip_inward"
-    )]
-    Inward { triangle: usize, volume: f64 },
-    #[error(
-        "the closed surface containing triangle {triangle} encloses no volume ({volume:.3e} m^3): \
+        "the mesh encloses no volume (its largest part, with triangle {triangle}, has {volume:.3e} m^3): \
          it is flat or folded onto itself and cannot be a solid body"
     )]
     ZeroVolume { triangle: usize, volume: f64 },

@@ -5,8 +5,8 @@ use std::path::Path;
 use super::{SurfaceError, SurfaceOptions, TriSurface};
 
 impl TriSurface {
-    /// Reads an OBJ or STL file, chosen by its extension (case-insensitive). Every error
-    /// names the file.
+    /// Reads an OBJ, STL, PLY, glTF or GLB file, chosen by its extension
+    /// (case-insensitive), in the file's own frame. Every error names the file.
     pub fn read(path: &Path, options: &SurfaceOptions) -> Result<Self, SurfaceError> {
         let extension = path
             .extension()
@@ -15,6 +15,8 @@ impl TriSurface {
         match extension.as_deref() {
             Some("obj") => Self::from_obj(path, options),
             Some("stl") => Self::from_stl(path, options),
+            Some("ply") => Self::from_ply(path, options),
+            Some("gltf" | "glb") => Self::from_gltf(path, options),
             _ => Err(SurfaceError::UnknownFormat {
                 path: path.to_path_buf(),
             }),

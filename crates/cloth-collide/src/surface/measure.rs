@@ -49,11 +49,14 @@ impl TriSurface {
                 .map(|p| pose.transform_point(&Point3::from(*p)).coords)
                 .collect(),
             triangles: self.triangles.clone(),
+            buried: self.buried.clone(),
+            defects: self.defects.clone(),
         }
     }
 
     /// The union of surfaces, e.g. a table made of five boxes. Vertices are not welded, so
-    /// parts stay separate closed components; the parts are expected not to overlap.
+    /// parts stay separate components with their own defects; the parts are expected not
+    /// to overlap.
     ///
     /// # Panics
     /// If `parts` is empty (a surface always has triangles) or the union has more than
@@ -65,18 +68,16 @@ impl TriSurface {
             total <= u32::MAX as usize,
             "merged surface has {total} vertices, over u32 indices"
         );
-        let mut merged = TriSurface {
-            vertices: Vec::with_capacity(total),
-            triangles: Vec::with_capacity(parts.iter().map(|s| s.triangles.len()).sum()),
-        };
+        let (mut vertices, mut triangles) = (Vec::with_capacity(total), Vec::new());
+        let (mut buried, mut defects) = (Vec::new(), Vec::new());
         for part in parts {
-            let offset = merged.vertices.len() as u32;
-            merged.vertices.extend_from_slice(&part.vertices);
-            merged
-                .triangles
-                .extend(part.triangles.iter().map(|tri| tri.map(|i| i + offset)));
+            let offset = vertices.len() as u32;
+            vertices.extend_from_slice(&part.vertices);
+            triangles.extend(part.triangles.iter().map(|tri| tri.map(|i| i + offset)));
+            buried.extend((0..part.triangles.len()).map(|t| part.is_buried(t)));
+            defects.extend_from_slice(&part.defects);
         }
-        merged
+        TriSurface::assemble(vertices, triangles, buried, defects)
     }
 
     /// The three corner positions of each triangle.

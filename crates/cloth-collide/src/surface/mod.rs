@@ -1,38 +1,86 @@
-//! Rigid-body surfaces: closed, manifold, outward triangle meshes, read from OBJ or STL
-//! files or built from primitives. Pure geometry; collision queries live elsewhere.
+//! Rigid-body surfaces: triangle meshes read from OBJ, STL, PLY or glTF files or built
+//! from primitives, repaired where that is sound and described where it is not. Pure
+//! geometry; collision queries live elsewhere.
 
+mod defects;
 mod edges;
 mod error;
 mod features;
+mod gltf;
 mod io;
 mod measure;
 mod obj;
 mod options;
+mod orientation;
+mod overlap;
+mod ply;
 mod primitives;
+mod repair;
 mod stl;
-mod validate;
 mod weld;
+mod winding;
 
 use cloth_core::Vec3;
 
+pub use defects::SurfaceDefect;
 pub use error::SurfaceError;
 pub use features::SharpFeature;
 pub use options::SurfaceOptions;
+pub use winding::WindingTree;
 
-/// A closed, manifold, consistently and outwardly oriented triangle mesh: what a rigid body
-/// is made of. Every constructor validates, so holding one means the invariants hold.
+/// A body's triangle mesh, its triangles turned to face outward wherever their part can be
+/// oriented. Every constructor checks it, so holding one means it encloses something.
+///
+/// A watertight surface (closed, every edge in two triangles, consistently oriented, its
+/// parts apart) tells inside from outside by its nearest triangle. Any other keeps the
+/// [`SurfaceDefect`]s found, and inside/outside comes from its winding number.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TriSurface {
     vertices: Vec<Vec3>,
     triangles: Vec<[u32; 3]>,
+    /// Per triangle, whether it lies inside another part (empty when none does).
+    buried: Vec<bool>,
+    defects: Vec<SurfaceDefect>,
 }
 
 impl TriSurface {
+    fn assemble(
+        vertices: Vec<Vec3>,
+        triangles: Vec<[u32; 3]>,
+        buried: Vec<bool>,
+        defects: Vec<SurfaceDefect>,
+    ) -> Self {
+        let buried = if buried.contains(&true) {
+            buried
+        } else {
+            Vec::new()
+        };
+        Self {
+            vertices,
+            triangles,
+            buried,
+            defects,
+        }
+    }
+
     pub fn vertices(&self) -> &[Vec3] {
         &self.vertices
     }
     /// Vertex indices of each triangle, counter-clockwise seen from outside.
     pub fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
+    }
+    /// What loading found and did; empty for a mesh that was watertight as given.
+    pub fn defects(&self) -> &[SurfaceDefect] {
+        &self.defects
+    }
+    /// Whether the nearest triangle alone tells inside from outside: closed, manifold,
+    /// consistently oriented, its parts apart (after the repairs that keep it so).
+    pub fn is_watertight(&self) -> bool {
+        self.defects.iter().all(SurfaceDefect::keeps_watertight)
+    }
+    /// Whether triangle `t` lies inside another part, out of the cloth's reach.
+    pub fn is_buried(&self, t: usize) -> bool {
+        self.buried.get(t).copied().unwrap_or(false)
     }
 }

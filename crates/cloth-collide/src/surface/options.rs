@@ -9,13 +9,11 @@ pub(super) const DEFAULT_WELD_FRACTION: f64 = 1e-7;
 /// How [`TriSurface::new`](super::TriSurface::new) and the file readers build a surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceOptions {
-    /// Vertices within this distance (m, after scaling) are welded into one, because STL files
-    /// repeat every corner and exporters round differently. `None` uses 1e-7 times the
-    /// bounding-box diagonal; `Some(0.0)` welds only exactly coincident vertices.
+    /// Vertices on open edges within this distance (m, after scaling) are joined, because
+    /// STL files repeat every corner and exporters split vertices along texture seams.
+    /// Vertices of a closed surface are never joined. `None` uses 1e-7 times the
+    /// bounding-box diagonal; `Some(0.0)` joins only exactly coincident ones.
     pub weld_distance: Option<f64>,
-    /// Flip every closed component that is consistently oriented inward instead of
-    /// rejecting it.
-    pub flip_inward: bool,
     /// Scale applied to the coordinates (e.g. 0.01 for a file in centimetres).
     pub scale: f64,
 }
@@ -24,7 +22,6 @@ impl Default for SurfaceOptions {
     fn default() -> Self {
         Self {
             weld_distance: None,
-            flip_inward: false,
             scale: 1.0,
         }
     }

@@ -6,12 +6,14 @@
 
 mod curve;
 mod error;
+mod gather;
 mod placement;
 mod toml_format;
 mod validate;
 
 pub use curve::Curve;
 pub use error::PatternError;
+pub use gather::{Gather, EASE, MAX_GATHER, SMALL_EXCESS};
 pub use placement::{Placement, Wrap};
 
 use nalgebra::Vector2;

@@ -9,15 +9,12 @@ const CLOSURE: f64 = 1e-6;
 /// polyline would see is within a fraction of a millimetre of a touch, which the mesher
 /// would refuse anyway.
 const CURVE_SEGMENTS: usize = 48;
-/// The largest relative length difference of a seam's two sides (easing beyond this is
-/// a drafting mistake, not ease).
-pub const MAX_EASE: f64 = 0.10;
 
 impl Pattern {
     /// Checks every panel (closed outlines that do not cross themselves, holes inside,
     /// drawable curves, a grain line, a finite placement) and every seam (sides that exist,
-    /// no edge sewn twice, lengths within 10% of each other). `file` names the source in
-    /// the errors.
+    /// no edge sewn twice, no gather beyond [`MAX_GATHER`](super::gather::MAX_GATHER)).
+    /// `file` names the source in the errors.
     pub fn validate(&self, file: &str) -> Result<(), PatternError> {
         if self.panels.is_empty() {
             return Err(PatternError::Pattern {
@@ -128,23 +125,21 @@ impl Pattern {
                     ));
                 }
             }
-            let length = |side: &super::SeamSide| self.panels[side.panel].outline[side.edge].length();
-            let (la, lb) = (length(&seam.a), length(&seam.b));
-            if (la - lb).abs() > MAX_EASE * la.max(lb) {
-                return Err(PatternError::seam(
-                    file,
-                    s,
-                    format!(
-                        "{} is {:.1} cm long and {} is {:.1} cm: they differ by {:.0}%, more than the {:.0}% ease allowed",
-                        self.describe(&seam.a),
-                        100.0 * la,
-                        self.describe(&seam.b),
-                        100.0 * lb,
-                        100.0 * (la - lb).abs() / la.max(lb),
-                        100.0 * MAX_EASE
-                    ),
-                ));
-            }
+        }
+        if let Some(g) = self.gathers().into_iter().find(super::Gather::excessive) {
+            return Err(PatternError::seam(
+                file,
+                g.seam,
+                format!(
+                    "{} is {:.1} cm long on one side and {:.1} cm on the other: a gather of {:.1}:1, beyond \
+                     the {:.0}:1 a seam can gather (is a side sewn to the wrong edge?)",
+                    g.name,
+                    100.0 * g.long,
+                    100.0 * g.short,
+                    g.ratio(),
+                    super::gather::MAX_GATHER
+                ),
+            ));
         }
         Ok(())
     }
