@@ -126,3 +126,40 @@ fn impossible_parameters_name_the_field() {
     assert!(sim.set_velocities(&[Vec3::zeros(); 3]).is_err());
     assert!(sim.set_velocities(&[Vec3::new(f64::NAN, 0.0, 0.0); 16]).is_err());
 }
+
+#[test]
+fn scenes_too_large_to_build_are_refused_before_anything_is_built() {
+    use cloth::scene_file::SceneFile;
+    let scene = |cloth: &str, extra: &str| {
+        let text = format!("{extra}\n[cloth]\n{cloth}\n[fabric]\npreset = \"cotton_poplin\"\n");
+        SceneFile::from_toml_str(&text, "big.toml").unwrap()
+    };
+    let dir = std::path::Path::new(".");
+    for cloth in [
+        "grid = { nx = 100000, ny = 100000, size = [1, 1] }",
+        "cusick = { edge_length = 1e-6 }",
+        "cantilever = { overhang = 0.1, cells = 1000000000 }",
+    ] {
+        let e = scene(cloth, "")
+            .prepare("big.toml", dir)
+            .err()
+            .expect(cloth)
+            .to_string();
+        assert!(
+            e.contains("over the limit of 2000000 (max_triangles)"),
+            "{cloth}: {e}"
+        );
+    }
+    // The limit is the scene's to set.
+    let small = "grid = { nx = 101, ny = 101, size = [1, 1] }";
+    assert!(scene(small, "").prepare("big.toml", dir).is_ok());
+    let e = scene(small, "max_triangles = 10000")
+        .prepare("big.toml", dir)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("about 2.00e4 triangles, over the limit of 10000"),
+        "{e}"
+    );
+}

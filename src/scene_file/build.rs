@@ -75,6 +75,18 @@ impl SceneFile {
         })?;
         fabric.validate().map_err(param)?;
 
+        if let Some(triangles) = self.cloth.estimated_triangles() {
+            if !(triangles <= self.max_triangles as f64) {
+                return Err(invalid(
+                    "cloth",
+                    format!(
+                        "the cloth would have about {triangles:.2e} triangles, over the limit of {} \
+                         (max_triangles): make it coarser, or raise the limit",
+                        self.max_triangles
+                    ),
+                ));
+            }
+        }
         let mut bodies = Vec::with_capacity(self.bodies.len());
         let mut warnings = Vec::new();
         for (k, spec) in self.bodies.iter().enumerate() {
@@ -101,6 +113,7 @@ impl SceneFile {
                 warnings.extend(pattern.gathers().into_iter().map(SceneWarning::Gather));
                 let garment = GarmentBuilder::new(pattern)
                     .edge_length(*edge_length)
+                    .max_triangles(self.max_triangles)
                     .file(path.display().to_string())
                     .build()?;
                 let fabrics =
@@ -218,6 +231,26 @@ impl SceneFile {
             bodies,
             warnings,
         })
+    }
+}
+
+impl ClothSpec {
+    /// The triangles a generated cloth would have, known before it is built; `None` for
+    /// what is sized by its file (a mesh, whose size the file bounds, or a pattern, which
+    /// the garment builder sizes itself).
+    fn estimated_triangles(&self) -> Option<f64> {
+        match *self {
+            ClothSpec::Grid { nx, ny, .. } => Some(2.0 * (nx as f64 - 1.0) * (ny as f64 - 1.0)),
+            ClothSpec::Cusick { edge_length, .. } => {
+                let disk = std::f64::consts::PI * crate::validation::cusick::SPECIMEN_RADIUS.powi(2);
+                Some(crate::garment::garment::triangles_in(disk, edge_length))
+            }
+            ClothSpec::Cantilever { overhang, cells } => {
+                let across = crate::validation::cantilever::STRIP_WIDTH * cells as f64 / overhang;
+                Some(2.0 * (cells as f64 + 1.0) * across.max(2.0))
+            }
+            ClothSpec::Garment { .. } | ClothSpec::Mesh { .. } => None,
+        }
     }
 }
 

@@ -33,6 +33,14 @@ pub struct SceneFile {
     pub self_collision: SelfCollision,
     #[serde(default)]
     pub output: OutputSpec,
+    /// The largest cloth mesh the scene may make, in triangles: a pattern in the wrong
+    /// units or a grid of a billion cells is refused before anything is built.
+    #[serde(default = "default_max_triangles")]
+    pub max_triangles: usize,
+}
+
+fn default_max_triangles() -> usize {
+    crate::garment::garment::DEFAULT_MAX_TRIANGLES
 }
 
 impl SceneFile {

@@ -6,7 +6,7 @@
 
 use cloth_core::Vec3;
 use cloth_garment::garmentcode::{from_json_str, from_path, ImportOptions};
-use cloth_garment::{Curve, Panel, Pattern, PatternError, SeamOrientation};
+use cloth_garment::{Curve, GarmentBuilder, GarmentError, Panel, Pattern, PatternError, SeamOrientation};
 use nalgebra::Vector2;
 use std::path::{Path, PathBuf};
 
@@ -640,4 +640,35 @@ fn imported_patterns_mesh_with_outward_triangles_and_matching_seam_pairs() {
             }
         }
     }
+}
+
+#[test]
+fn a_pattern_in_the_wrong_units_is_refused_before_meshing() {
+    // GarmentCode's sampled skirt with its units read as millimetres per kilometre: panels
+    // 45 km wide. Refused at once, naming the panel and the count, with nothing meshed.
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/garmentcode/patterns/rand_1_001.json"),
+    )
+    .unwrap()
+    .replace("\"units_in_meter\": 100", "\"units_in_meter\": 0.001");
+    let pattern = from_json_str(&text, "rand_1_001.json", &ImportOptions::default()).unwrap();
+    let (estimate, _) = pattern.estimated_triangles(0.015);
+    assert!(estimate > 1e12, "{estimate}");
+    let e = GarmentBuilder::new(pattern).build().unwrap_err();
+    assert!(
+        matches!(e, GarmentError::TooLarge { limit: 2_000_000, .. }),
+        "{e}"
+    );
+    let message = e.to_string();
+    assert!(
+        message.contains("panel, 'wb_front', is 45198.000 m by 4696.740 m")
+            && message.contains("max_triangles"),
+        "{message}"
+    );
+    // The estimate is close to what meshing gives, at the real units.
+    let pattern = load("../../garmentcode/patterns/rand_1_001.json");
+    let (estimate, _) = pattern.estimated_triangles(0.015);
+    let garment = GarmentBuilder::new(pattern).edge_length(0.015).build().unwrap();
+    let ratio = estimate / garment.mesh.triangles().len() as f64;
+    assert!((0.8..1.25).contains(&ratio), "estimate / meshed = {ratio}");
 }

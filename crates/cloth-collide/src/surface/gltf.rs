@@ -21,6 +21,21 @@ impl TriSurface {
             line: None,
             message,
         };
+        // gltf-json's validation indexes a primitive's POSITION accessor before checking it
+        // exists (and panics): check that first on the unvalidated document.
+        let unchecked =
+            gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| parse(e.to_string()))?;
+        let accessors = unchecked.accessors().count();
+        for mesh in &unchecked.as_json().meshes {
+            for primitive in &mesh.primitives {
+                if let Some(a) = primitive.attributes.values().find(|a| a.value() >= accessors) {
+                    return Err(parse(format!(
+                        "a primitive's attribute names accessor {}, but the file has {accessors}",
+                        a.value()
+                    )));
+                }
+            }
+        }
         let gltf = gltf::Gltf::from_slice(&bytes).map_err(|e| parse(e.to_string()))?;
         let mut buffers: Vec<Vec<u8>> = Vec::new();
         for buffer in gltf.buffers() {

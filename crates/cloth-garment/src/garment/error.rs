@@ -15,6 +15,21 @@ pub enum GarmentError {
         #[source]
         source: MeshingError,
     },
+    /// The mesh would be larger than the limit: refused before meshing.
+    #[error(
+        "{file}: meshing at an edge length of {edge_length} m would make about {triangles:.2e} triangles, \
+         over the limit of {limit}; the largest panel, '{panel}', is {width:.3} m by {height:.3} m: check the \
+         pattern's units, or raise the edge length or the limit (max_triangles)"
+    )]
+    TooLarge {
+        file: String,
+        panel: String,
+        width: f64,
+        height: f64,
+        edge_length: f64,
+        triangles: f64,
+        limit: usize,
+    },
     #[error("{what} are not a valid cloth mesh: {source}")]
     Mesh {
         what: &'static str,

@@ -3,10 +3,12 @@
 
 mod error;
 mod placement_check;
+mod size;
 mod weld;
 
 pub use error::GarmentError;
 pub use placement_check::PlacementWarning;
+pub use size::{triangles_in, DEFAULT_MAX_TRIANGLES};
 pub use weld::Welded;
 
 use crate::meshing::mesh_region;
@@ -24,6 +26,7 @@ pub const MAX_TURN: f64 = std::f64::consts::PI / 12.0;
 pub struct GarmentBuilder {
     pattern: Pattern,
     edge_length: f64,
+    max_triangles: usize,
     file: String,
 }
 
@@ -53,12 +56,19 @@ impl GarmentBuilder {
         Self {
             pattern,
             edge_length: DEFAULT_EDGE_LENGTH,
+            max_triangles: DEFAULT_MAX_TRIANGLES,
             file: "pattern".into(),
         }
     }
     /// Target edge length of the mesh, m.
     pub fn edge_length(mut self, h: f64) -> Self {
         self.edge_length = h;
+        self
+    }
+    /// The largest mesh to make, in triangles: a pattern that would give more is refused
+    /// before anything is meshed.
+    pub fn max_triangles(mut self, n: usize) -> Self {
+        self.max_triangles = n;
         self
     }
     /// The pattern's source, named in errors.
@@ -73,6 +83,7 @@ impl GarmentBuilder {
         let Self {
             pattern,
             edge_length: h,
+            max_triangles,
             file,
         } = self;
         if !(h.is_finite() && h > 0.0) {
@@ -83,6 +94,20 @@ impl GarmentBuilder {
             });
         }
         pattern.validate(&file)?;
+        let (triangles, largest) = pattern.estimated_triangles(h);
+        if triangles > max_triangles as f64 {
+            let panel = &pattern.panels[largest];
+            let (width, height) = size::extent(panel);
+            return Err(GarmentError::TooLarge {
+                file,
+                panel: panel.name.clone(),
+                width,
+                height,
+                edge_length: h,
+                triangles,
+                limit: max_triangles,
+            });
+        }
         // Pieces per outline edge: a seam's sides share the larger count.
         // At the target length, or finer where the edge turns fast (a tight armhole or
         // neckline keeps its shape on a coarse mesh); refinement's angle limit then grades

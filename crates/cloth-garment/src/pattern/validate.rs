@@ -5,6 +5,10 @@ use crate::meshing::encloses;
 
 /// Two ends of consecutive edges closer than this (m) are the same point.
 const CLOSURE: f64 = 1e-6;
+/// The most straight pieces (a straight edge is one, a curve [`CURVE_SEGMENTS`]) a panel's
+/// outline or hole may have. GarmentCode's panels have hundreds; this bounds the crossing
+/// test, whose worst case (every piece overlapping every other in x) is quadratic.
+const MAX_LOOP_SEGMENTS: usize = 20_000;
 /// Polyline segments per curved edge in the crossing test: a crossing that only a finer
 /// polyline would see is within a fraction of a millimetre of a touch, which the mesher
 /// would refuse anyway.
@@ -56,6 +60,18 @@ impl Pattern {
                 std::iter::once(("", &panel.outline)).chain(panel.holes.iter().map(|h| ("hole edge ", h)));
             let mut polylines = Vec::new();
             for (loop_name, edges) in loops {
+                let segments: usize = edges.iter().map(pieces).sum();
+                if segments > MAX_LOOP_SEGMENTS {
+                    return Err(fail(
+                        None,
+                        format!(
+                            "a loop of {} edges ({segments} straight pieces, counting {CURVE_SEGMENTS} per curve), \
+                             more than the {MAX_LOOP_SEGMENTS} pieces a panel's loop may have (is it a mesh \
+                             exported as a pattern?)",
+                            edges.len()
+                        ),
+                    ));
+                }
                 if edges.len() < 2 {
                     return Err(fail(
                         None,
@@ -145,41 +161,94 @@ impl Pattern {
     }
 }
 
+/// Straight pieces of an edge in the crossing test.
+fn pieces(e: &Edge) -> usize {
+    match e.curve {
+        super::Curve::Line => 1,
+        _ => CURVE_SEGMENTS,
+    }
+}
+
 /// The loop as points, each tagged with the edge its following segment belongs to.
 fn polyline(edges: &[Edge]) -> Vec<(Point2, usize)> {
     let mut out = Vec::new();
     for (k, e) in edges.iter().enumerate() {
-        let pieces = match e.curve {
-            super::Curve::Line => 1,
-            _ => CURVE_SEGMENTS,
-        };
-        let points = e.curve.resample(e.start, e.end, pieces);
-        out.extend(points[..pieces].iter().map(|&p| (p, k)));
+        let n = pieces(e);
+        let points = e.curve.resample(e.start, e.end, n);
+        out.extend(points[..n].iter().map(|&p| (p, k)));
     }
     out
 }
 
-/// The edges of the first pair of non-adjacent segments that cross or touch.
-fn crossing(line: &[(Point2, usize)]) -> Option<(usize, usize)> {
-    let n = line.len();
-    for i in 0..n {
-        for j in i + 2..n {
-            if i == 0 && j == n - 1 {
+/// Segment `i` of a closed polyline, as its ends.
+fn segment(line: &[(Point2, usize)], i: usize) -> (Point2, Point2) {
+    (line[i].0, line[(i + 1) % line.len()].0)
+}
+
+/// The pairs of segments (index in `a`, index in `b`) whose x ranges overlap, in no
+/// particular order but the same every time: a sweep over the segments sorted by their
+/// left ends, so that outlines of many short segments are checked in near-linear time.
+fn overlapping_in_x(
+    a: &[(Point2, usize)],
+    b: &[(Point2, usize)],
+    mut visit: impl FnMut(usize, usize) -> bool,
+) -> bool {
+    let span = |line: &[(Point2, usize)], i: usize| {
+        let (p, q) = segment(line, i);
+        (p.x.min(q.x), p.x.max(q.x))
+    };
+    // (left, right, which line, index)
+    let mut events: Vec<(f64, f64, bool, usize)> = (0..a.len())
+        .map(|i| {
+            let (l, r) = span(a, i);
+            (l, r, false, i)
+        })
+        .chain((0..b.len()).map(|j| {
+            let (l, r) = span(b, j);
+            (l, r, true, j)
+        }))
+        .collect();
+    events.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.2.cmp(&y.2)).then(x.3.cmp(&y.3)));
+    for (k, &(_, right, from_b, i)) in events.iter().enumerate() {
+        for &(left, _, other_b, j) in &events[k + 1..] {
+            if left > right {
+                break;
+            }
+            if from_b == other_b {
                 continue;
             }
-            let (a, b) = (line[i].0, line[(i + 1) % n].0);
-            let (c, d) = (line[j].0, line[(j + 1) % n].0);
-            if segments_meet(a, b, c, d) {
-                return Some((line[i].1, line[j].1));
+            let (ia, jb) = if from_b { (j, i) } else { (i, j) };
+            if visit(ia, jb) {
+                return true;
             }
         }
     }
-    None
+    false
+}
+
+/// The edges of the first pair of non-adjacent segments that cross or touch (the pair
+/// with the smallest first segment, then second).
+fn crossing(line: &[(Point2, usize)]) -> Option<(usize, usize)> {
+    let n = line.len();
+    let mut first: Option<(usize, usize)> = None;
+    overlapping_in_x(line, line, |i, j| {
+        let (i, j) = (i.min(j), i.max(j));
+        let adjacent = j <= i + 1 || (i == 0 && j == n - 1);
+        if !adjacent && first.is_none_or(|f| (i, j) < f) {
+            let ((a, b), (c, d)) = (segment(line, i), segment(line, j));
+            if segments_meet(a, b, c, d) {
+                first = Some((i, j));
+            }
+        }
+        false
+    });
+    first.map(|(i, j)| (line[i].1, line[j].1))
 }
 
 fn crosses(a: &[(Point2, usize)], b: &[(Point2, usize)]) -> bool {
-    (0..a.len()).any(|i| {
-        (0..b.len()).any(|j| segments_meet(a[i].0, a[(i + 1) % a.len()].0, b[j].0, b[(j + 1) % b.len()].0))
+    overlapping_in_x(a, b, |i, j| {
+        let ((p, q), (r, s)) = (segment(a, i), segment(b, j));
+        segments_meet(p, q, r, s)
     })
 }
 
