@@ -2,6 +2,7 @@
 //! vertices paired one to one, ready to be sewn.
 
 mod error;
+mod gathering;
 mod placement_check;
 mod size;
 mod weld;
@@ -49,6 +50,9 @@ pub struct Garment {
     pub panel_names: Vec<String>,
     /// The fabric preset named by each panel, if any.
     pub panel_fabrics: Vec<Option<String>>,
+    /// The triangles along the longer side of seams whose sides differ, gathered onto the
+    /// shorter: they are sewn slack in compression (see [`gathering`]).
+    pub gathered: Vec<usize>,
 }
 
 impl GarmentBuilder {
@@ -201,12 +205,14 @@ impl GarmentBuilder {
                 pairs,
             });
         }
+        let gathered = gathering::gathered_triangles(&mesh, &seams);
         Ok(Garment {
             mesh,
             seams,
             triangle_panel,
             panel_names: pattern.panels.iter().map(|p| p.name.clone()).collect(),
             panel_fabrics: pattern.panels.iter().map(|p| p.fabric.clone()).collect(),
+            gathered,
         })
     }
 }
