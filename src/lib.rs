@@ -6,6 +6,7 @@ pub use cloth_core::*;
 
 pub use cloth_garment as garment;
 pub mod bench;
+pub mod drape;
 pub mod obj;
 pub mod output;
 pub mod presets;

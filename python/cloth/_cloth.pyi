@@ -103,12 +103,19 @@ class ClothMesh:
         ``ValueError``/``TypeError`` naming the array and the element."""
     @staticmethod
     def load(
-        path: _Path, *, scale: float = 1.0, uv_scale: float = 1.0, position: _Vec3 = (0.0, 0.0, 0.0)
+        path: _Path,
+        *,
+        scale: float = 1.0,
+        uv_scale: float = 1.0,
+        up_axis: Literal["y", "z"] = "z",
+        rotation: _Vec3 = (0.0, 0.0, 0.0),
+        position: _Vec3 = (0.0, 0.0, 0.0),
     ) -> ClothMesh:
         """An OBJ file, as a scene's ``[cloth.mesh]``: its ``vt`` times ``uv_scale`` are the
         material coordinates; a file without them must be flat, and is its own rest shape
-        with the warp along x. Coordinates are multiplied by ``scale``, then moved by
-        ``position``."""
+        with the warp along x. Coordinates are multiplied by ``scale``, turned from
+        ``up_axis`` to z up, then by ``rotation`` (degrees about x, then y, then z), then
+        moved by ``position``."""
     @property
     def positions(self) -> npt.NDArray[np.float64]:
         """``(N, 3)`` initial positions."""
@@ -147,13 +154,19 @@ class Body:
         path: _Path,
         *,
         scale: float = 1.0,
+        up_axis: Literal["y", "z"] | None = None,
+        rotation: _Vec3 = (0.0, 0.0, 0.0),
         position: _Vec3 = (0.0, 0.0, 0.0),
         thickness: float | None = None,
         friction: float | None = None,
         name: str | None = None,
     ) -> Body:
-        """An OBJ or STL file (``scale`` 0.01 for centimetres). A surface that is not closed
-        and consistently oriented raises ``ValueError`` naming the file and the edge."""
+        """An OBJ, STL, PLY, glTF or GLB file (``scale`` 0.01 for centimetres), turned from
+        its ``up_axis`` (``"y"`` or ``"z"``; glTF's is ``"y"`` when not given, the others'
+        ``"z"``) to z up, then by ``rotation`` (degrees about x, then y, then z), then moved
+        to ``position``. A mesh with holes, stray edges or overlapping parts loads with a
+        warning for each kind of defect (see :attr:`defects`); one that encloses nothing
+        raises ``ValueError`` naming the file."""
     @staticmethod
     def sphere(
         radius: float,
@@ -217,6 +230,10 @@ class Body:
     @property
     def parts(self) -> list[str]:
         """The names of the surfaces it is made of."""
+    @property
+    def defects(self) -> list[str]:
+        """What loading found wrong with the mesh and did about it, one line per kind of
+        defect (empty for a watertight mesh)."""
     @property
     def vertices(self) -> npt.NDArray[np.float64]:
         """``(V, 3)`` vertices of all its parts, placed."""
@@ -527,3 +544,23 @@ class Scene:
         and the report, then raises :class:`SimulationError`; ``callback`` returning
         ``False`` stops the run, which is then reported and returned as interrupted; Ctrl-C
         writes the state reached and raises ``KeyboardInterrupt``."""
+
+def drape_scenes(
+    inputs: Sequence[_Path],
+    body: _Path,
+    *,
+    body_up_axis: Literal["y", "z"] | None = None,
+    fabric: str = "cotton_poplin",
+    edge_length: float = 0.015,
+) -> list[tuple[str, str, str]]:
+    """The patterns named by ``inputs`` (files, or folders searched for ``.toml`` and
+    ``.json`` patterns) as ``(name, path, scene)``: the folder name its outputs go under,
+    the pattern file, and the text of the scene that drapes it on ``body`` (as ``cloth
+    drape`` writes it beside the outputs). ``ValueError`` for a missing input, a folder
+    without patterns, two patterns of one name, an unknown fabric or a bad edge length."""
+
+def write_drape_summary(out_dir: _Path, runs: Sequence[tuple[str, _Path, bool, str | None]]) -> str:
+    """Writes ``summary.json`` and ``summary.md`` into ``out_dir`` for ``runs``, each
+    ``(name, pattern, skipped, error)``: the entry of a run is read from its folder's
+    report; a run without one (refused before it started) is a failure with ``error``.
+    Returns the entries as JSON text."""

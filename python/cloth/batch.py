@@ -50,16 +50,18 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Literal
 
-from ._cloth import Scene, SimulationError
+from ._cloth import Scene, SimulationError, drape_scenes, write_drape_summary
 
 __all__ = [
     "BATCH_FILE",
+    "DrapeResult",
     "DONE_FILE",
     "FAILED_FILE",
     "BatchResult",
     "Job",
     "RunRecord",
     "Status",
+    "drape",
     "run_batch",
     "sweep",
 ]
@@ -676,3 +678,58 @@ def run_batch(
             for future in futures:
                 future.cancel()
     return BatchResult(records=[r for r in records if r is not None], out_dir=str(out))
+
+
+@dataclasses.dataclass(frozen=True)
+class DrapeResult:
+    """What :func:`drape` did: the batch's records, and the summary's entries (one per
+    pattern, as ``summary.json`` holds them: ``name``, ``pattern``, ``outcome``,
+    ``skipped``, ``failure``, ``seconds``, ``particles``, ``sewing_steps``,
+    ``draping_steps``, ``drape_ended``, ``self_intersections``, ``body_intersections``,
+    ``deepest_penetration`` (m), ``max_warp``, ``max_weft``, ``p99_warp``, ``p99_weft``
+    (%))."""
+
+    batch: BatchResult
+    entries: list[dict[str, Any]]
+
+    @property
+    def ok(self) -> bool:
+        """Whether every pattern finished."""
+        return all(e["outcome"] == "finished" for e in self.entries)
+
+
+def drape(
+    patterns: _PathLike | Sequence[_PathLike],
+    body: _PathLike,
+    out_dir: _PathLike,
+    *,
+    body_up_axis: Literal["y", "z"] | None = None,
+    fabric: str = "cotton_poplin",
+    edge_length: float = 0.015,
+    executor: concurrent.futures.Executor | None = None,
+) -> DrapeResult:
+    """Drapes every pattern on ``body``, as ``cloth drape`` does, on any executor.
+
+    ``patterns`` are pattern files (our TOML or GarmentCode JSON) or folders searched for
+    them; each drapes into ``out_dir/<pattern name>`` with ``fabric`` at ``edge_length``
+    (m) on the body file (``body_up_axis`` ``"y"`` for GarmentCode's and SMPL's y-up
+    bodies; by default glTF's is y, the other formats' z), through :func:`run_batch`, so
+    patterns done by an earlier batch are skipped. ``out_dir/summary.json`` and
+    ``summary.md`` then say how every pattern ended, in the same form as the command's.
+    ``ValueError`` before anything runs for a missing pattern or folder, two patterns of
+    one name, an unknown fabric or a bad edge length.
+    """
+    inputs = [patterns] if isinstance(patterns, (str, os.PathLike)) else list(patterns)
+    scenes = drape_scenes(
+        [os.fspath(p) for p in inputs],
+        os.fspath(body),
+        body_up_axis=body_up_axis,
+        fabric=fabric,
+        edge_length=edge_length,
+    )
+    jobs = [Job(name=name, scene=tomllib.loads(text)) for name, _, text in scenes]
+    result = run_batch(jobs, out_dir, executor=executor)
+    pattern_of = {name: path for name, path, _ in scenes}
+    runs = [(r.name, pattern_of[r.name], r.status == "skipped", r.error) for r in result.records]
+    entries = json.loads(write_drape_summary(os.fspath(Path(out_dir).absolute()), runs))
+    return DrapeResult(batch=result, entries=entries)

@@ -76,7 +76,8 @@ impl SceneFile {
         fabric.validate().map_err(param)?;
 
         if let Some(triangles) = self.cloth.estimated_triangles() {
-            if !(triangles <= self.max_triangles as f64) {
+            // A NaN estimate (an edge length of NaN) is refused too.
+            if triangles.is_nan() || triangles > self.max_triangles as f64 {
                 return Err(invalid(
                     "cloth",
                     format!(

@@ -1,11 +1,11 @@
 //! Turning a file's frame into ours: z up, the body facing -y.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The axis that points up in a mesh file. Most avatar assets (GarmentCode, SMPL,
 /// Marvelous Designer exports) and every glTF file are y-up; our world is z-up.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum UpAxis {
     Y,

@@ -2,6 +2,7 @@
 //! input is at fault (a bad scene, pattern, body or fabric), 1 when a valid run fails.
 
 mod commands;
+mod drape;
 mod progress;
 mod render;
 
@@ -52,6 +53,11 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
+    /// Drape many patterns on one body, each into OUT/<pattern name>/ with the outputs of
+    /// `run`, and write OUT/summary.json and summary.md. Patterns finished by an earlier
+    /// batch with the same body, fabric and edge length are skipped. Exit status 0 when
+    /// every pattern finished, 1 when some failed, 2 for bad input.
+    Drape(drape::DrapeArgs),
     /// Write a generated mannequin as OBJ.
     Mannequin(MannequinArgs),
     /// Render meshes (OBJ, PLY) to a PNG picture.
@@ -142,6 +148,7 @@ fn main() -> ExitCode {
         Command::Bench { steps, quick } => commands::bench(steps, quick),
         Command::Mannequin(args) => commands::mannequin(args.measurements(), &args.output),
         Command::Render(args) => render::render(&args),
+        Command::Drape(args) => drape::drape(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -475,3 +475,117 @@ fn bench_prints_json_for_the_standard_scenes() {
     }
     assert!(json["threads"].as_u64().unwrap() >= 1);
 }
+
+#[test]
+fn drape_runs_many_patterns_into_folders_with_one_summary() {
+    let dir = scratch("drape");
+    let out = dir.join("out");
+    // A GarmentCode waistband (two panels, a few hundred particles) and a pattern whose
+    // JSON is cut short: one finishes, one is refused, and the batch goes on.
+    let band = assets().join("garmentcode/patterns/rand_1_001.json");
+    let broken = dir.join("broken.json");
+    std::fs::write(&broken, "{\"pattern\": {\"panels\": ").unwrap();
+    let body = assets().join("garmentcode/bodies/mean_all.obj");
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "drape",
+            band.to_str().unwrap(),
+            broken.to_str().unwrap(),
+            "--body",
+            body.to_str().unwrap(),
+            "--body-up-axis",
+            "y",
+            "--edge-length",
+            "0.03",
+            "--out",
+            out.to_str().unwrap(),
+            "--jobs",
+            "2",
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let a = args(extra);
+        cloth(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let o = run(&[]);
+    assert_eq!(o.status.code(), Some(1), "one pattern failed: {}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let entries = summary.as_array().unwrap();
+    assert_eq!(entries.len(), 2);
+    let band_entry = &entries[0];
+    assert_eq!(band_entry["name"], "rand_1_001");
+    assert_eq!(band_entry["outcome"], "finished", "{band_entry}");
+    assert!(band_entry["particles"].as_u64().unwrap() > 50);
+    assert!(band_entry["sewing_steps"].as_u64().unwrap() > 0);
+    assert!(band_entry["draping_steps"].as_u64().unwrap() > 0);
+    for key in [
+        "max_warp",
+        "p99_weft",
+        "deepest_penetration",
+        "self_intersections",
+        "body_intersections",
+    ] {
+        assert!(band_entry[key].is_number(), "{key}: {band_entry}");
+    }
+    let broken_entry = &entries[1];
+    assert_eq!(broken_entry["outcome"], "failed");
+    assert!(
+        broken_entry["failure"].as_str().unwrap().contains("broken.json"),
+        "{broken_entry}"
+    );
+    for file in [
+        "cloth.obj",
+        "report.json",
+        "render.png",
+        "scene.toml",
+        "finished.json",
+    ] {
+        assert!(out.join("rand_1_001").join(file).is_file(), "{file}");
+    }
+    let table = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(
+        table.contains("1 of 2 patterns finished") && table.contains("| rand_1_001 | finished"),
+        "{table}"
+    );
+    // The scene written beside the outputs runs the same drape again.
+    let again = cloth(&["check", out.join("rand_1_001/scene.toml").to_str().unwrap()]);
+    assert!(again.status.success(), "{}", stderr(&again));
+
+    // Again: the finished pattern is skipped, the broken one tried and refused again.
+    let o = run(&[]);
+    assert_eq!(o.status.code(), Some(1));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary[0]["skipped"], true);
+    assert_eq!(summary[0]["outcome"], "finished");
+
+    // Bad input to the batch itself: exit 2 before anything runs.
+    let missing = dir.join("missing.obj");
+    let bad_body = cloth(&[
+        "drape",
+        band.to_str().unwrap(),
+        "--body",
+        missing.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(bad_body.status.code(), Some(2), "{}", stderr(&bad_body));
+    assert!(stderr(&bad_body).contains("missing.obj"));
+    let bad_fabric = run(&["--fabric", "tweed"]);
+    assert_eq!(bad_fabric.status.code(), Some(2));
+    let empty = dir.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let o = cloth(&[
+        "drape",
+        empty.to_str().unwrap(),
+        "--body",
+        body.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("holds no pattern"), "{}", stderr(&o));
+}

@@ -6,6 +6,7 @@
 mod arrays;
 mod body;
 mod convert;
+mod drape;
 mod errors;
 mod fabric;
 mod garment;
@@ -36,6 +37,8 @@ fn _cloth(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulation::Strain>()?;
     m.add_function(wrap_pyfunction!(simulation::strain, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::grid_stretch, m)?)?;
+    m.add_function(wrap_pyfunction!(drape::drape_scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(drape::write_drape_summary, m)?)?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<scene::RunResult>()?;
     Ok(())

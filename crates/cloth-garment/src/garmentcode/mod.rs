@@ -94,8 +94,10 @@ fn parse_error(file: &str, e: &serde_json::Error) -> PatternError {
     }
 }
 
-/// GarmentCode's own naming (pygarment/pattern/core.py `BasicPattern.name_from_path`).
-fn pattern_name(file: &str) -> String {
+/// The name GarmentCode gives the pattern in `file` (pygarment/pattern/core.py
+/// `BasicPattern.name_from_path`): the file stem without `_specification`, or the folder's
+/// name for its generic `specification.json`.
+pub fn pattern_name(file: &str) -> String {
     let path = Path::new(file);
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or(file);
     let name = stem.strip_suffix("_specification").unwrap_or(stem);

@@ -1,0 +1,385 @@
+//! `cloth drape`: many patterns on one body, each into a folder of its own, with one
+//! summary. The work is the library's (`cloth::drape`); this file parses, schedules the
+//! patterns over `--jobs` threads, shows progress and catches Ctrl-C and SIGTERM.
+
+use crate::Failure;
+use cloth::collide::{SurfaceOptions, TriSurface};
+use cloth::drape::{find_patterns, write_summary, DrapeRequest, PatternInput, SummaryEntry};
+use cloth::presets::FabricLibrary;
+use cloth::scene_file::{claim_output_folder, RunObserver, UpAxis};
+use cloth::{Simulation, StepStats};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+use std::ops::ControlFlow;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum Axis {
+    Y,
+    Z,
+}
+
+#[derive(clap::Args)]
+pub struct DrapeArgs {
+    /// Patterns (our TOML or GarmentCode JSON), or folders to search for them.
+    #[arg(required = true)]
+    pub patterns: Vec<PathBuf>,
+    /// The body to drape on (OBJ, STL, PLY, glTF, GLB).
+    #[arg(long)]
+    pub body: PathBuf,
+    /// The body file's up axis (GarmentCode's and SMPL's bodies are y-up; default: y for
+    /// glTF, z for the other formats).
+    #[arg(long, value_enum)]
+    pub body_up_axis: Option<Axis>,
+    /// A fabric preset (`cloth fabrics` lists them).
+    #[arg(long, default_value = "cotton_poplin")]
+    pub fabric: String,
+    /// Target edge length of the cloth mesh, m.
+    #[arg(long, default_value_t = cloth::garment::garment::DEFAULT_EDGE_LENGTH)]
+    pub edge_length: f64,
+    /// The folder for the outputs: one folder per pattern, and summary.json, summary.md.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Run every pattern again, also those finished by an earlier batch, and write into
+    /// folders that hold something else.
+    #[arg(long)]
+    pub force: bool,
+    /// Patterns draped at once (each uses all cores in its parallel parts).
+    #[arg(long, default_value_t = 1)]
+    pub jobs: usize,
+    /// Stop a pattern after this many seconds: its state and report are kept, and it
+    /// counts as failed.
+    #[arg(long)]
+    pub time_limit: Option<f64>,
+    /// Print nothing but errors and the final count.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// One pattern's folder, and whether a run may write into it.
+fn folder_for(out: &Path, pattern: &PatternInput, force: bool) -> Result<PathBuf, String> {
+    let folder = out.join(&pattern.name);
+    // A folder of an earlier drape (it holds the scene written for it) is ours to redo.
+    let ours = folder.join("scene.toml").exists();
+    if !ours && !force {
+        claim_output_folder(&folder, false).map_err(|e| format!("{e}: pass --force to write into it"))?;
+    }
+    Ok(folder)
+}
+
+/// Sees one pattern's run: stops it for an interrupt or the time limit, and tells the
+/// progress display where it is.
+struct Watch<'a> {
+    interrupted: &'a AtomicBool,
+    deadline: Option<Instant>,
+    timed_out: bool,
+    status: &'a Mutex<Vec<String>>,
+    slot: usize,
+    name: &'a str,
+    last: Instant,
+}
+
+impl RunObserver for Watch<'_> {
+    fn step(&mut self, stage: &'static str, _sim: &Simulation, stats: &StepStats) -> ControlFlow<()> {
+        if self.interrupted.load(Ordering::Relaxed) {
+            return ControlFlow::Break(());
+        }
+        if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            self.timed_out = true;
+            return ControlFlow::Break(());
+        }
+        if self.last.elapsed() >= Duration::from_millis(250) {
+            self.last = Instant::now();
+            if let Ok(mut s) = self.status.lock() {
+                s[self.slot] = format!("{} {stage} {}", self.name, stats.step);
+            }
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+/// Drapes one pattern into its folder and says how it ended.
+fn drape_one(
+    pattern: &PatternInput,
+    request: &DrapeRequest,
+    args: &DrapeArgs,
+    interrupted: &AtomicBool,
+    status: &Mutex<Vec<String>>,
+    slot: usize,
+) -> SummaryEntry {
+    let start = Instant::now();
+    let folder = match folder_for(&args.out, pattern, args.force) {
+        Ok(f) => f,
+        Err(reason) => return SummaryEntry::refused(&pattern.name, &pattern.path, reason, 0.0),
+    };
+    if !args.force && request.finished_in(&folder) {
+        if let Some(entry) = SummaryEntry::from_report(&pattern.name, &pattern.path, &folder, true) {
+            return entry;
+        }
+    }
+    let refused = |reason: String| {
+        SummaryEntry::refused(
+            &pattern.name,
+            &pattern.path,
+            reason,
+            start.elapsed().as_secs_f64(),
+        )
+    };
+    if let Err(e) = std::fs::create_dir_all(&folder) {
+        return refused(format!("cannot create '{}': {e}", folder.display()));
+    }
+    let _ = std::fs::remove_file(folder.join(cloth::drape::FINISHED_FILE));
+    let scene_path = folder.join("scene.toml");
+    if let Err(e) = std::fs::write(&scene_path, request.scene_toml(pattern)) {
+        return refused(format!("cannot write '{}': {e}", scene_path.display()));
+    }
+    let scene = match request.scene(pattern) {
+        Ok(s) => s,
+        Err(e) => return refused(e.to_string()),
+    };
+    let prepared = match scene.prepare(&scene_path.display().to_string(), &folder) {
+        Ok(p) => p,
+        Err(e) => return refused(e.to_string()),
+    };
+    let mut watch = Watch {
+        interrupted,
+        deadline: args.time_limit.map(|s| start + Duration::from_secs_f64(s)),
+        timed_out: false,
+        status,
+        slot,
+        name: &pattern.name,
+        last: Instant::now(),
+    };
+    if let Err(e) = prepared.run_into(&scene, &folder, &mut watch) {
+        return refused(e.to_string());
+    }
+    let Some(mut entry) = SummaryEntry::from_report(&pattern.name, &pattern.path, &folder, false) else {
+        return refused(format!("its report in '{}' cannot be read", folder.display()));
+    };
+    if watch.timed_out {
+        entry.outcome = "failed".into();
+        entry.failure = Some(format!(
+            "stopped by the time limit of {} s ({})",
+            args.time_limit.unwrap_or(0.0),
+            entry.failure.as_deref().unwrap_or("")
+        ));
+    }
+    if entry.finished() {
+        if let Err(e) = request.mark_finished(&folder) {
+            entry.outcome = "failed".into();
+            entry.failure = Some(format!("cannot mark '{}' finished: {e}", folder.display()));
+        }
+    }
+    entry
+}
+
+/// The line said when a pattern is done.
+fn done_line(entry: &SummaryEntry, done: usize, total: usize) -> String {
+    let what = if entry.skipped {
+        "finished earlier".to_string()
+    } else if entry.finished() {
+        format!(
+            "finished in {:.1} s: {} particles, sewn in {} steps, draped in {} ({}), max warp {:.2} %, weft {:.2} %",
+            entry.seconds,
+            entry.particles.unwrap_or(0),
+            entry.sewing_steps.unwrap_or(0),
+            entry.draping_steps.unwrap_or(0),
+            entry.drape_ended.as_deref().unwrap_or("?"),
+            entry.max_warp.unwrap_or(f64::NAN),
+            entry.max_weft.unwrap_or(f64::NAN)
+        )
+    } else {
+        format!(
+            "{} after {:.1} s: {}",
+            entry.outcome,
+            entry.seconds,
+            entry.failure.as_deref().unwrap_or("")
+        )
+    };
+    format!("[{done}/{total}] {}: {what}", entry.name)
+}
+
+/// `cloth drape`.
+pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
+    if !(args.edge_length.is_finite() && args.edge_length > 0.0) {
+        return Err(Failure::input(format!(
+            "--edge-length {} must be a positive length in m",
+            args.edge_length
+        )));
+    }
+    if args.jobs == 0 {
+        return Err(Failure::input("--jobs must be at least 1"));
+    }
+    if let Some(t) = args.time_limit {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(Failure::input(format!(
+                "--time-limit {t} must be a positive number of seconds"
+            )));
+        }
+    }
+    FabricLibrary::builtin()
+        .fabric(&args.fabric)
+        .map_err(Failure::input)?;
+    let patterns = find_patterns(&args.patterns).map_err(Failure::input)?;
+    // The body once, up front: a bad one is the batch's input error, not every pattern's.
+    let body = std::path::absolute(&args.body)
+        .map_err(|e| Failure::input(format!("{}: {e}", args.body.display())))?;
+    let surface = TriSurface::read(&body, &SurfaceOptions::default()).map_err(Failure::input)?;
+    if !args.quiet {
+        for d in surface.defects() {
+            eprintln!("warning: {}: {d}", body.display());
+        }
+    }
+    let request = DrapeRequest {
+        body,
+        body_up_axis: args.body_up_axis.map(|a| match a {
+            Axis::Y => UpAxis::Y,
+            Axis::Z => UpAxis::Z,
+        }),
+        fabric: args.fabric.clone(),
+        edge_length: args.edge_length,
+    };
+    std::fs::create_dir_all(&args.out).map_err(|e| {
+        Failure::input(format!(
+            "cannot create output folder '{}': {e}",
+            args.out.display()
+        ))
+    })?;
+
+    let interrupted = Arc::new(AtomicBool::new(false));
+    {
+        let flag = interrupted.clone();
+        // A second Ctrl-C gives up on writing the outputs.
+        ctrlc::set_handler(move || {
+            if flag.swap(true, Ordering::Relaxed) {
+                std::process::exit(130);
+            }
+        })
+        .map_err(|e| Failure::run(format!("cannot catch Ctrl-C: {e}")))?;
+    }
+
+    let total = patterns.len();
+    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| {
+        let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template("[{bar:24}] {pos}/{len} patterns  {elapsed}  {msg}")
+                .expect("the template is valid")
+                .progress_chars("=> "),
+        );
+        bar.enable_steady_tick(Duration::from_millis(250));
+        bar
+    });
+    let say = |line: String| match &bar {
+        Some(b) => b.println(line),
+        None if !args.quiet => eprintln!("{line}"),
+        None => {}
+    };
+    let jobs = args.jobs.min(total);
+    let status = Mutex::new(vec![String::new(); jobs]);
+    let next = Mutex::new(0usize);
+    let entries: Mutex<Vec<Option<SummaryEntry>>> = Mutex::new(vec![None; total]);
+    let summary_error: Mutex<Option<String>> = Mutex::new(None);
+    let live = AtomicUsize::new(jobs);
+    let write = |entries: &[Option<SummaryEntry>]| {
+        let written: Vec<SummaryEntry> = entries.iter().flatten().cloned().collect();
+        if let Err(e) = write_summary(&args.out, &written) {
+            *summary_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!(
+                "cannot write the summary in '{}': {e}",
+                args.out.display()
+            ));
+        }
+    };
+    std::thread::scope(|scope| {
+        for slot in 0..jobs {
+            let (request, args, interrupted) = (&request, &args, &interrupted);
+            let (status, next, entries, patterns, bar, say, write, live) =
+                (&status, &next, &entries, &patterns, &bar, &say, &write, &live);
+            scope.spawn(move || {
+                // Counted down however the worker ends, so the display never waits forever.
+                let _alive = Alive(live);
+                loop {
+                    if interrupted.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let k = {
+                        let mut n = next.lock().unwrap_or_else(|e| e.into_inner());
+                        let k = *n;
+                        *n += 1;
+                        k
+                    };
+                    let Some(pattern) = patterns.get(k) else { break };
+                    // A bug in one pattern's run must not take the batch down with it.
+                    let entry = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        drape_one(pattern, request, args, interrupted, status, slot)
+                    }))
+                    .unwrap_or_else(|_| {
+                        SummaryEntry::refused(
+                            &pattern.name,
+                            &pattern.path,
+                            "internal error: the run panicked".into(),
+                            0.0,
+                        )
+                    });
+                    let mut all = entries.lock().unwrap_or_else(|e| e.into_inner());
+                    all[k] = Some(entry.clone());
+                    let done = all.iter().flatten().count();
+                    write(&all);
+                    drop(all);
+                    say(done_line(&entry, done, total));
+                    if let Some(b) = bar {
+                        b.inc(1);
+                    }
+                }
+            });
+        }
+        if let Some(b) = &bar {
+            while live.load(Ordering::Relaxed) > 0 {
+                let line = status.lock().map(|s| s.join("  ")).unwrap_or_default();
+                b.set_message(line);
+                std::thread::sleep(Duration::from_millis(250));
+            }
+        }
+    });
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    let entries: Vec<SummaryEntry> = entries
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+        .into_iter()
+        .flatten()
+        .collect();
+    if let Some(e) = summary_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        return Err(Failure::run(e));
+    }
+    let finished = entries.iter().filter(|e| e.finished()).count();
+    println!(
+        "{finished} of {total} patterns finished; summary in '{}'",
+        args.out.join(cloth::drape::SUMMARY_MD).display()
+    );
+    if interrupted.load(Ordering::Relaxed) {
+        return Err(Failure {
+            message: format!("interrupted after {} of {total} patterns", entries.len()),
+            status: 130,
+        });
+    }
+    if finished < total {
+        return Err(Failure::run(format!(
+            "{} of {total} patterns did not finish",
+            total - finished
+        )));
+    }
+    Ok(())
+}
+
+/// Counts a worker down when it ends.
+struct Alive<'a>(&'a AtomicUsize);
+
+impl Drop for Alive<'_> {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::Relaxed);
+    }
+}

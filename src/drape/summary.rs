@@ -1,0 +1,169 @@
+//! The batch's summary: one entry per pattern, read back from the report its run wrote,
+//! as JSON (`summary.json`) and as a table (`summary.md`).
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::fmt::Write as _;
+use std::path::Path;
+
+pub const SUMMARY_JSON: &str = "summary.json";
+pub const SUMMARY_MD: &str = "summary.md";
+
+/// How one pattern's drape ended.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SummaryEntry {
+    pub name: String,
+    /// The pattern file.
+    pub pattern: String,
+    /// "finished" (sewn and draped to rest or to the step limit), "failed" (refused, or
+    /// the run failed), or "interrupted".
+    pub outcome: String,
+    /// Finished by an earlier batch and not run again.
+    pub skipped: bool,
+    /// Why it failed or stopped.
+    pub failure: Option<String>,
+    /// Wall time of its run, s.
+    pub seconds: f64,
+    pub particles: Option<usize>,
+    pub sewing_steps: Option<u64>,
+    pub draping_steps: Option<u64>,
+    /// How the drape stage ended: "at_rest", "step_limit", ...
+    pub drape_ended: Option<String>,
+    pub self_intersections: Option<usize>,
+    pub body_intersections: Option<usize>,
+    /// m.
+    pub deepest_penetration: Option<f64>,
+    /// %.
+    pub max_warp: Option<f64>,
+    pub max_weft: Option<f64>,
+    pub p99_warp: Option<f64>,
+    pub p99_weft: Option<f64>,
+}
+
+impl SummaryEntry {
+    /// A pattern refused before it ran (nothing in its folder but, maybe, its scene).
+    pub fn refused(name: &str, pattern: &Path, reason: String, seconds: f64) -> Self {
+        Self {
+            name: name.to_string(),
+            pattern: pattern.display().to_string(),
+            outcome: "failed".into(),
+            skipped: false,
+            failure: Some(reason),
+            seconds,
+            particles: None,
+            sewing_steps: None,
+            draping_steps: None,
+            drape_ended: None,
+            self_intersections: None,
+            body_intersections: None,
+            deepest_penetration: None,
+            max_warp: None,
+            max_weft: None,
+            p99_warp: None,
+            p99_weft: None,
+        }
+    }
+
+    /// The entry of a run whose report is `folder/report.json`; `None` when it has none
+    /// or it cannot be read.
+    pub fn from_report(name: &str, pattern: &Path, folder: &Path, skipped: bool) -> Option<Self> {
+        let text = std::fs::read_to_string(folder.join("report.json")).ok()?;
+        let r: Value = serde_json::from_str(&text).ok()?;
+        let outcome = r["outcome"]["kind"].as_str()?.to_string();
+        let failure = match outcome.as_str() {
+            "failed" => r["outcome"]["error"].as_str().map(str::to_string),
+            "interrupted" => Some(format!(
+                "interrupted at {} step {}",
+                r["outcome"]["stage"].as_str().unwrap_or("?"),
+                r["outcome"]["step"]
+            )),
+            _ => None,
+        };
+        let stage = |name: &str| {
+            r["stages"]
+                .as_array()
+                .and_then(|stages| stages.iter().find(|s| s["stage"] == name))
+        };
+        let steps = |name: &str| stage(name).and_then(|s| s["steps"].as_u64());
+        let count = |key: &str| r[key].as_u64().map(|n| n as usize);
+        Some(Self {
+            name: name.to_string(),
+            pattern: pattern.display().to_string(),
+            outcome,
+            skipped,
+            failure,
+            seconds: r["total_seconds"].as_f64().unwrap_or(0.0),
+            particles: count("particles"),
+            sewing_steps: steps("sewing"),
+            draping_steps: steps("draping"),
+            drape_ended: stage("draping").and_then(|s| s["ended"].as_str().map(str::to_string)),
+            self_intersections: count("self_intersections"),
+            body_intersections: count("body_intersections"),
+            deepest_penetration: r["deepest_penetration"].as_f64(),
+            max_warp: r["strain"]["max_warp"].as_f64(),
+            max_weft: r["strain"]["max_weft"].as_f64(),
+            p99_warp: r["strain"]["p99_warp"].as_f64(),
+            p99_weft: r["strain"]["p99_weft"].as_f64(),
+        })
+    }
+
+    pub fn finished(&self) -> bool {
+        self.outcome == "finished"
+    }
+}
+
+/// Writes `summary.json` and `summary.md` into `dir` (each whole, then renamed into
+/// place, so a batch killed while writing leaves the last complete one).
+pub fn write_summary(dir: &Path, entries: &[SummaryEntry]) -> std::io::Result<()> {
+    let json = serde_json::to_string_pretty(entries).expect("entries serialise");
+    crate::obj::write_atomically(&dir.join(SUMMARY_JSON), |w| w.write_all(json.as_bytes()))?;
+    let table = markdown(entries);
+    crate::obj::write_atomically(&dir.join(SUMMARY_MD), |w| w.write_all(table.as_bytes()))
+}
+
+fn markdown(entries: &[SummaryEntry]) -> String {
+    let finished = entries.iter().filter(|e| e.finished()).count();
+    let mut out = format!(
+        "# Drape summary\n\n{finished} of {} patterns finished.\n\n",
+        entries.len()
+    );
+    out += "| pattern | outcome | seconds | particles | sewing steps | draping steps | self / body intersections | deepest penetration, mm | max warp / weft, % | p99 warp / weft, % | failure |\n";
+    out += "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    let num = |v: Option<f64>, digits: usize| v.map_or("-".to_string(), |x| format!("{x:.digits$}"));
+    let int = |v: Option<u64>| v.map_or("-".to_string(), |x| x.to_string());
+    for e in entries {
+        let outcome = if e.skipped {
+            format!("{} (earlier)", e.outcome)
+        } else {
+            e.outcome.clone()
+        };
+        let ended = e
+            .drape_ended
+            .as_deref()
+            .map_or(String::new(), |d| format!(" ({d})"));
+        let _ = writeln!(
+            out,
+            "| {} | {}{} | {:.1} | {} | {} | {} | {} / {} | {} | {} / {} | {} / {} | {} |",
+            e.name,
+            outcome,
+            ended,
+            e.seconds,
+            int(e.particles.map(|n| n as u64)),
+            int(e.sewing_steps),
+            int(e.draping_steps),
+            int(e.self_intersections.map(|n| n as u64)),
+            int(e.body_intersections.map(|n| n as u64)),
+            num(e.deepest_penetration.map(|d| 1e3 * d), 1),
+            num(e.max_warp, 2),
+            num(e.max_weft, 2),
+            num(e.p99_warp, 2),
+            num(e.p99_weft, 2),
+            e.failure
+                .as_deref()
+                .unwrap_or("")
+                .replace('|', "/")
+                .replace('\n', " "),
+        );
+    }
+    out
+}
