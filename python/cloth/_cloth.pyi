@@ -545,22 +545,3 @@ class Scene:
         ``False`` stops the run, which is then reported and returned as interrupted; Ctrl-C
         writes the state reached and raises ``KeyboardInterrupt``."""
 
-def drape_scenes(
-    inputs: Sequence[_Path],
-    body: _Path,
-    *,
-    body_up_axis: Literal["y", "z"] | None = None,
-    fabric: str = "cotton_poplin",
-    edge_length: float = 0.015,
-) -> list[tuple[str, str, str]]:
-    """The patterns named by ``inputs`` (files, or folders searched for ``.toml`` and
-    ``.json`` patterns) as ``(name, path, scene)``: the folder name its outputs go under,
-    the pattern file, and the text of the scene that drapes it on ``body`` (as ``cloth
-    drape`` writes it beside the outputs). ``ValueError`` for a missing input, a folder
-    without patterns, two patterns of one name, an unknown fabric or a bad edge length."""
-
-def write_drape_summary(out_dir: _Path, runs: Sequence[tuple[str, _Path, bool, str | None]]) -> str:
-    """Writes ``summary.json`` and ``summary.md`` into ``out_dir`` for ``runs``, each
-    ``(name, pattern, skipped, error)``: the entry of a run is read from its folder's
-    report; a run without one (refused before it started) is a failure with ``error``.
-    Returns the entries as JSON text."""

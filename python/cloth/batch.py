@@ -50,7 +50,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Literal
 
-from ._cloth import Scene, SimulationError, drape_scenes, write_drape_summary
+from ._cloth import Scene, SimulationError, _drape_scenes, _write_drape_summary
 
 __all__ = [
     "BATCH_FILE",
@@ -720,7 +720,7 @@ def drape(
     one name, an unknown fabric or a bad edge length.
     """
     inputs = [patterns] if isinstance(patterns, (str, os.PathLike)) else list(patterns)
-    scenes = drape_scenes(
+    scenes = _drape_scenes(
         [os.fspath(p) for p in inputs],
         os.fspath(body),
         body_up_axis=body_up_axis,
@@ -731,5 +731,5 @@ def drape(
     result = run_batch(jobs, out_dir, executor=executor)
     pattern_of = {name: path for name, path, _ in scenes}
     runs = [(r.name, pattern_of[r.name], r.status == "skipped", r.error) for r in result.records]
-    entries = json.loads(write_drape_summary(os.fspath(Path(out_dir).absolute()), runs))
+    entries = json.loads(_write_drape_summary(os.fspath(Path(out_dir).absolute()), runs))
     return DrapeResult(batch=result, entries=entries)

@@ -313,12 +313,13 @@ def test_body_files_round_trip(tmp_path):
     np.testing.assert_allclose(from_stl.signed_distance(points), sphere.signed_distance(points), atol=1e-6)
 
 
-def test_open_or_missing_body_files_are_refused_naming_the_file(tmp_path):
-    open_surface = tmp_path / "open.obj"
-    open_surface.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n")
+def test_flat_or_missing_body_files_are_refused_naming_the_file(tmp_path):
+    # A lone triangle encloses nothing: no inside at all.
+    flat = tmp_path / "flat.obj"
+    flat.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     with pytest.raises(ValueError) as e:
-        cloth.Body.load(open_surface)
-    assert "open.obj" in str(e.value), str(e.value)
+        cloth.Body.load(flat)
+    assert "flat.obj" in str(e.value) and "encloses no volume" in str(e.value), str(e.value)
     with pytest.raises((ValueError, OSError)) as e:
         cloth.Body.load(tmp_path / "nothing.obj")
     assert "nothing.obj" in str(e.value), str(e.value)

@@ -478,3 +478,67 @@ def test_a_folder_that_is_not_a_runs_is_left_alone(sheet_file: Path, tmp_path: P
     assert "not a batch run" in (record.error or "")
     assert sorted(p.name for p in mine.iterdir()) == ["thesis.tex"]
     assert (mine / "thesis.tex").read_text() == "years of work"
+
+
+GARMENTCODE = REPO / "assets" / "garmentcode"
+
+
+def test_drape_writes_the_commands_summary_and_skips_finished_patterns(tmp_path: Path) -> None:
+    """cloth.batch.drape: GarmentCode's waistband on its y-up body through run_batch (here
+    on a thread pool), and a pattern refused; summary.json as `cloth drape` writes it."""
+    broken = tmp_path / "broken.json"
+    broken.write_text('{"pattern": {"panels": ')
+    band = GARMENTCODE / "patterns" / "rand_1_001.json"
+    body = GARMENTCODE / "bodies" / "mean_all.obj"
+    out = tmp_path / "out"
+    with ThreadPoolExecutor(2) as pool:
+        result = batch.drape(
+            [band, broken], body, out, body_up_axis="y", edge_length=0.03, executor=pool
+        )
+    assert not result.ok
+    names = [e["name"] for e in result.entries]
+    assert names == ["rand_1_001", "broken"]
+    done, refused = result.entries
+    assert done["outcome"] == "finished" and not done["skipped"]
+    assert done["particles"] > 50 and done["sewing_steps"] > 0 and done["draping_steps"] > 0
+    assert refused["outcome"] == "failed" and "broken.json" in refused["failure"]
+    on_disk = json.loads((out / "summary.json").read_text())
+    assert on_disk == result.entries
+    assert "1 of 2 patterns finished" in (out / "summary.md").read_text()
+    # The scene each run drapes is the command's: the body turned y-up to z-up.
+    scene = (out / "rand_1_001" / "report.json").read_text()
+    assert json.loads(scene)["outcome"]["kind"] == "finished"
+
+    again = batch.drape([band], body, out, body_up_axis="y", edge_length=0.03)
+    assert again.ok and again.entries[0]["skipped"]
+    assert again.batch.records[0].status == "skipped"
+
+    with pytest.raises(ValueError, match="tweed"):
+        batch.drape([band], body, out, fabric="tweed")
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(ValueError, match="holds no pattern"):
+        batch.drape([empty], body, out)
+
+
+def test_a_y_up_body_loads_turned_and_an_imperfect_one_with_warnings(tmp_path: Path) -> None:
+    body = cloth.Body.load(GARMENTCODE / "bodies" / "mean_all.obj", up_axis="y")
+    assert body.defects == []
+    v = body.vertices
+    # Feet on the floor, the head 1.72 m up, facing -y (the nose is the most forward point).
+    assert abs(v[:, 2].min()) < 0.02 and abs(v[:, 2].max() - 1.72) < 0.01
+    head = v[v[:, 2] > 1.5]
+    assert head[:, 1].min() < -0.1 and head[:, 1].max() < 0.1
+    # The same turned by hand with rotation, from z-up: the same vertices.
+    turned = cloth.Body.load(GARMENTCODE / "bodies" / "mean_all.obj", rotation=(90, 0, 0))
+    assert abs(turned.vertices - v).max() < 1e-12
+    # An open cube: it loads, with a warning naming the holes.
+    open_cube = tmp_path / "open.obj"
+    open_cube.write_text(
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+        "f 1 4 3\nf 1 3 2\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n"
+    )
+    with pytest.warns(UserWarning, match="holes"):
+        cube = cloth.Body.load(open_cube)
+    assert any("holes" in d for d in cube.defects)
+    assert cube.signed_distance([[0, 0, 0], [0, 0, 3]]).tolist()[0] < 0

@@ -1,5 +1,6 @@
 //! What `cloth.batch.drape` needs of the library: the patterns a batch drapes and their
-//! scenes, and the summary `cloth drape` writes, so that both write the same.
+//! scenes, and the summary `cloth drape` writes, so that both write the same. Private to
+//! the package (`cloth.batch.drape` is the public face).
 
 use crate::errors::input;
 use cloth::drape::{find_patterns, write_summary, DrapeRequest, PatternInput, SummaryEntry};
@@ -12,7 +13,7 @@ use std::path::PathBuf;
 /// file, and the text of the scene that drapes it on `body` (as `cloth drape` writes it
 /// beside the outputs). ValueError for a missing input, a folder without patterns, two
 /// patterns of one name, an unknown fabric or a bad edge length.
-#[pyfunction]
+#[pyfunction(name = "_drape_scenes")]
 #[pyo3(signature = (inputs, body, *, body_up_axis = None, fabric = "cotton_poplin", edge_length = 0.015))]
 pub fn drape_scenes(
     inputs: Vec<PathBuf>,
@@ -53,7 +54,7 @@ pub fn drape_scenes(
 /// skipped, error)`: the entry of a run is read from its folder's report; a run without
 /// one (refused before it started) is a failure with `error`. Returns the entries as
 /// JSON text.
-#[pyfunction]
+#[pyfunction(name = "_write_drape_summary")]
 pub fn write_drape_summary(
     out_dir: PathBuf,
     runs: Vec<(String, PathBuf, bool, Option<String>)>,

@@ -10,7 +10,8 @@ use super::{SurfaceError, SurfaceOptions, TriSurface};
 
 impl TriSurface {
     /// Reads an ASCII or binary STL file. STL repeats every corner, so the welding of
-    /// [`SurfaceOptions::weld_distance`] is what joins the facets.
+    /// [`SurfaceOptions::weld_distance`] is what joins the facets (and is not reported as
+    /// a defect).
     pub fn from_stl(path: &Path, options: &SurfaceOptions) -> Result<Self, SurfaceError> {
         let bytes = read_bytes(path)?;
         // stl_io reports a blank file as a truncated binary header; say what it is.
@@ -36,6 +37,11 @@ impl TriSurface {
             vertices.extend(triangle.vertices.iter().map(|v| Vec3::from(v.0.map(f64::from))));
             triangles.push([first, first + 1, first + 2]);
         }
-        TriSurface::new(vertices, triangles, options).map_err(|e| e.in_file(path))
+        let mut surface = TriSurface::new(vertices, triangles, options).map_err(|e| e.in_file(path))?;
+        // Joining the corners is how STL is read, not something wrong with the file.
+        surface
+            .defects
+            .retain(|d| !matches!(d, super::SurfaceDefect::Welded { .. }));
+        Ok(surface)
     }
 }
