@@ -61,3 +61,40 @@ fn a_garment_stopped_while_sewing_keeps_its_unwelded_state() {
     let gap = result.report.largest_seam_gap.unwrap();
     assert!(gap > scene.sewing.gap_tolerance, "{gap}");
 }
+
+#[test]
+fn a_y_up_body_turned_by_the_scene_meets_garmentcodes_patterns() {
+    // GarmentCode's body and a design made for it: with up_axis = "y" the body stands in
+    // our z-up world facing -y, as the importer puts GarmentCode's panels, so the
+    // waistband's panels lie 5 to 17 cm off the waist, all round it. Read as z-up,
+    // the body lies on the floor and the band hangs in the air a metre above it.
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
+    let scene = |up: &str| {
+        let text = format!(
+            "[cloth.garment]\npattern = \"patterns/rand_1_001.json\"\nedge_length = 0.03\n\
+             [fabric]\npreset = \"cotton_poplin\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\n{up}"
+        );
+        let prepared = SceneFile::from_toml_str(&text, "band.toml")
+            .unwrap()
+            .prepare("band.toml", &assets)
+            .unwrap();
+        let cloth::scene_file::PreparedCloth::Garment { garment, .. } = &prepared.cloth else {
+            panic!("a garment")
+        };
+        let distances: Vec<f64> = garment
+            .mesh
+            .positions()
+            .iter()
+            .map(|p| prepared.bodies.signed_distance(0.0, p).unwrap().0)
+            .collect();
+        let (near, far) = distances
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &d| (lo.min(d), hi.max(d)));
+        (near, far, prepared.warnings.len())
+    };
+    let (near, far, warnings) = scene("up_axis = \"y\"");
+    assert!(near > 0.0 && far < 0.2, "{near} to {far} m from the body");
+    assert_eq!(warnings, 0);
+    let (near, _, _) = scene("");
+    assert!(near > 0.5, "z-up: {near} m");
+}

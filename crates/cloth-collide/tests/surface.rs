@@ -824,3 +824,88 @@ fn gltf_and_glb_read_with_their_node_transforms() {
         assert!((hi - Vector3::new(0.5, 5.5, 0.5)).norm() < 1e-6, "{name}: {hi}");
     }
 }
+
+#[test]
+fn an_avatar_with_holes_and_a_part_through_it_answers_inside_as_the_watertight_one() {
+    // GarmentCode's body with the triangles around two points cut away (a mouth and an
+    // ear left open) and a bar pushed through its chest: it loads with both defects named,
+    // and points a few millimetres off the skin and further away are inside or outside
+    // exactly as for the body as given.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/garmentcode/bodies/mean_all.obj");
+    let whole = TriSurface::read(&path, &defaults()).unwrap();
+    let (v, t) = (whole.vertices().to_vec(), whole.triangles().to_vec());
+    let near = |tri: &[u32; 3], c: Vec3, r: f64| tri.iter().any(|&i| (v[i as usize] - c).norm() < r);
+    let (mouth, ear) = (Vector3::new(0.0, 1.55, 0.09), Vector3::new(0.075, 1.6, 0.0));
+    let mut cut: Vec<[u32; 3]> = t
+        .iter()
+        .filter(|tri| !near(tri, mouth, 0.02) && !near(tri, ear, 0.015))
+        .copied()
+        .collect();
+    assert!(
+        cut.len() < t.len() - 20,
+        "the holes cut {} triangles",
+        t.len() - cut.len()
+    );
+    let bar = TriSurface::cuboid(Vector3::new(0.3, 0.02, 0.02))
+        .unwrap()
+        .transformed(&Isometry3::translation(0.0, 1.3, 0.0));
+    let mut vertices = v.clone();
+    let offset = vertices.len() as u32;
+    vertices.extend_from_slice(bar.vertices());
+    cut.extend(bar.triangles().iter().map(|tri| tri.map(|i| i + offset)));
+    let imperfect = TriSurface::new(vertices, cut, &defaults()).unwrap();
+    assert!(
+        matches!(defect(&imperfect, "Holes"), Some(SurfaceDefect::Holes { loops, .. }) if *loops >= 2),
+        "{:?}",
+        imperfect.defects()
+    );
+    assert!(
+        defect(&imperfect, "Overlapping").is_some(),
+        "{:?}",
+        imperfect.defects()
+    );
+    let (reference, body) = (
+        Body::new("given", whole.clone()),
+        Body::new("imperfect", imperfect),
+    );
+    // Points along the vertex normals, 5 mm and 5 cm out and in, away from the cuts and the bar.
+    let mut normals = vec![Vector3::zeros(); v.len()];
+    for tri in &t {
+        let [a, b, c] = tri.map(|i| v[i as usize]);
+        let n = (b - a).cross(&(c - a));
+        tri.iter().for_each(|&i| normals[i as usize] += n);
+    }
+    let (mut checked, mut disagree) = (0, Vec::new());
+    for (i, p) in v.iter().enumerate().step_by(7) {
+        let away = (p - mouth).norm() > 0.06 && (p - ear).norm() > 0.05 && (p.y - 1.3).abs() > 0.08;
+        let Some(n) = normals[i].try_normalize(1e-12) else {
+            continue;
+        };
+        if !away {
+            continue;
+        }
+        for d in [0.005, 0.05, -0.005] {
+            let q = p + d * n;
+            let want = reference.signed_distance(0.0, &q) < 0.0;
+            if (body.signed_distance(0.0, &q) < 0.0) != want {
+                disagree.push((q, d));
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 5000, "{checked}");
+    assert!(
+        disagree.is_empty(),
+        "{} of {checked} points disagree, e.g. {:?}",
+        disagree.len(),
+        &disagree[..disagree.len().min(5)]
+    );
+    // Inside the bar where it stands out of the body, and in the body where the bar crosses it.
+    for (p, inside) in [
+        (Vector3::new(0.28, 1.3, 0.0), true),
+        (Vector3::new(0.0, 1.3, 0.0), true),
+        (Vector3::new(0.28, 1.3, 0.1), false),
+    ] {
+        assert_eq!(body.signed_distance(0.0, &p) < 0.0, inside, "{p:?}");
+    }
+}

@@ -299,3 +299,30 @@ fn seam_spacing(garment: &Garment) -> f64 {
         sum / count as f64
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_gap_that_does_not_narrow_for_a_second_is_a_stall() {
+        let settings = SewingSettings::default(); // 50 steps a second
+        let mut stall = Stall::new(&settings);
+        // Narrowing by more than a tenth each second: never a stall.
+        let mut gap = 0.01;
+        for step in 0..500 {
+            assert!(!stall.stalled(gap, step), "step {step}");
+            gap *= 0.995;
+        }
+        // Stuck: a stall within a second, then one every second, not in between.
+        let stalls: Vec<u64> = (500..650).filter(|&step| stall.stalled(gap, step)).collect();
+        assert!(stalls[0] <= 550, "{stalls:?}");
+        assert!(stalls.windows(2).all(|w| w[1] - w[0] == 50), "{stalls:?}");
+        // Creeping by under a tenth a second is stalled too.
+        let mut creeping = Stall::new(&settings);
+        let stalled = (0..200)
+            .filter(|&step| creeping.stalled(0.01 * (1.0 - 1e-3 * step as f64), step))
+            .count();
+        assert!(stalled >= 3, "{stalled}");
+    }
+}
