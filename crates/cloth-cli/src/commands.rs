@@ -26,17 +26,7 @@ pub fn run(
     for w in &prepared.warnings {
         eprintln!("warning: {w}");
     }
-    let interrupted = Arc::new(AtomicBool::new(false));
-    {
-        let flag = interrupted.clone();
-        // A second Ctrl-C gives up on writing the outputs.
-        ctrlc::set_handler(move || {
-            if flag.swap(true, Ordering::Relaxed) {
-                std::process::exit(130);
-            }
-        })
-        .map_err(|e| Failure::run(format!("cannot catch Ctrl-C: {e}")))?;
-    }
+    let interrupted = catch_interrupts()?;
     let mut progress = Progress::new(verbosity, interrupted);
     let run = prepared.run_into(&scene, &out, &mut progress);
     progress.finish();
@@ -69,6 +59,20 @@ pub fn run(
             report.display()
         ))),
     }
+}
+
+/// A flag that Ctrl-C and SIGTERM (a batch scheduler, `timeout`) raise, for the run to
+/// stop at its next step and write what it has; a second signal quits at once.
+pub fn catch_interrupts() -> Result<Arc<AtomicBool>, Failure> {
+    let interrupted = Arc::new(AtomicBool::new(false));
+    let flag = interrupted.clone();
+    ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::Relaxed) {
+            std::process::exit(130);
+        }
+    })
+    .map_err(|e| Failure::run(format!("cannot catch Ctrl-C: {e}")))?;
+    Ok(interrupted)
 }
 
 /// `cloth check`: everything `run` would read and build, without simulating.

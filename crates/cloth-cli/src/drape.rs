@@ -13,7 +13,7 @@ use std::io::IsTerminal;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -249,17 +249,7 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
         ))
     })?;
 
-    let interrupted = Arc::new(AtomicBool::new(false));
-    {
-        let flag = interrupted.clone();
-        // A second Ctrl-C gives up on writing the outputs.
-        ctrlc::set_handler(move || {
-            if flag.swap(true, Ordering::Relaxed) {
-                std::process::exit(130);
-            }
-        })
-        .map_err(|e| Failure::run(format!("cannot catch Ctrl-C: {e}")))?;
-    }
+    let interrupted = crate::commands::catch_interrupts()?;
 
     let total = patterns.len();
     let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| {

@@ -4,6 +4,7 @@
 //! scale; otherwise red, green and blue are used if present.
 
 use super::{Colouring, LoadedMesh};
+use crate::collide::surface::ply_number;
 use crate::output::strain_colour;
 use crate::render::error::RenderError;
 use crate::Vec3;
@@ -75,7 +76,7 @@ pub(super) fn read(path: &Path) -> Result<LoadedMesh, RenderError> {
     for (i, v) in vertices.iter().enumerate() {
         let get = |name: &str| {
             v.get(name)
-                .and_then(number)
+                .and_then(ply_number)
                 .ok_or_else(|| bad("vertex", i, format!("{name} is not a number")))
         };
         positions.push(Vec3::new(get("x")?, get("y")?, get("z")?));
@@ -142,26 +143,12 @@ fn is_scalar(element: &ElementDef, property: &str) -> bool {
         .is_some_and(|p| matches!(p.data_type, PropertyType::Scalar(_)))
 }
 
-fn number(p: &Property) -> Option<f64> {
-    match *p {
-        Property::Char(v) => Some(v.into()),
-        Property::UChar(v) => Some(v.into()),
-        Property::Short(v) => Some(v.into()),
-        Property::UShort(v) => Some(v.into()),
-        Property::Int(v) => Some(v.into()),
-        Property::UInt(v) => Some(v.into()),
-        Property::Float(v) => Some(v.into()),
-        Property::Double(v) => Some(v),
-        _ => None,
-    }
-}
-
 /// Bytes as they are; floating point as a fraction of full intensity.
 fn channel(p: &Property) -> Option<u8> {
     match *p {
         Property::UChar(v) => Some(v),
         Property::Float(v) => Some((v.clamp(0.0, 1.0) * 255.0).round() as u8),
         Property::Double(v) => Some((v.clamp(0.0, 1.0) * 255.0).round() as u8),
-        _ => number(p).map(|v| v.clamp(0.0, 255.0) as u8),
+        _ => ply_number(p).map(|v| v.clamp(0.0, 255.0) as u8),
     }
 }

@@ -26,6 +26,7 @@ pub use defects::SurfaceDefect;
 pub use error::SurfaceError;
 pub use features::SharpFeature;
 pub use options::SurfaceOptions;
+pub use ply::ply_number;
 pub use winding::WindingTree;
 
 /// A body's triangle mesh, its triangles turned to face outward wherever their part can be

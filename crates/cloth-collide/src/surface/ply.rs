@@ -27,7 +27,7 @@ impl TriSurface {
         for (i, v) in ply.payload.get("vertex").unwrap_or(&none).iter().enumerate() {
             let get = |name: &str| {
                 v.get(name)
-                    .and_then(number)
+                    .and_then(ply_number)
                     .ok_or_else(|| parse(None, format!("vertex {i}: `{name}` is missing or not a number")))
             };
             vertices.push(Vec3::new(get("x")?, get("y")?, get("z")?));
@@ -62,7 +62,8 @@ fn first_line(message: &str) -> String {
         .to_string()
 }
 
-fn number(p: &Property) -> Option<f64> {
+/// A scalar PLY property as a number (`None` for a list).
+pub fn ply_number(p: &Property) -> Option<f64> {
     match *p {
         Property::Char(v) => Some(v.into()),
         Property::UChar(v) => Some(v.into()),
