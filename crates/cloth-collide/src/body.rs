@@ -1,5 +1,5 @@
-//! A rigid body: a closed surface, its parry mesh and BVH, how it moves, and its contact
-//! properties.
+//! A rigid body: a surface, its parry mesh and BVH (and its winding numbers when it is not
+//! watertight), how it moves, and its contact properties.
 
 use crate::convert::{from_parry, to_parry};
 use crate::surface::{SharpFeature as SurfaceFeature, TriSurface, WindingTree};

@@ -1,8 +1,8 @@
 //! cloth-collide: rigid polyhedral bodies for the cloth to drape on, on parry.
 //!
-//! A [`Body`] is a closed, outward-oriented [`TriSurface`] (read from OBJ or STL, or
-//! generated) with a pose that may move in time, a contact thickness and a friction
-//! coefficient. [`Bodies`] implements cloth-core's [`cloth_core::Collider`]: bounded BVH
+//! A [`Body`] is a [`TriSurface`] (read from OBJ, STL, PLY, glTF or GLB, repaired where
+//! that is sound and its defects named, or generated) with a pose that may move in time,
+//! a contact thickness and a friction coefficient. [`Bodies`] implements cloth-core's [`cloth_core::Collider`]: bounded BVH
 //! point queries for contact, ray casts along each particle's path against tunnelling, and
 //! the sharp edges and corners that must not poke through cloth triangles.
 
