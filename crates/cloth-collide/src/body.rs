@@ -67,10 +67,15 @@ impl Body {
     /// A static body at the identity pose with the default contact properties.
     pub fn new(name: impl Into<String>, surface: TriSurface) -> Self {
         let vertices = surface.vertices().iter().map(to_parry).collect();
-        let reachable: Vec<[u32; 3]> = (0..surface.triangles().len())
+        let mut reachable: Vec<[u32; 3]> = (0..surface.triangles().len())
             .filter(|&t| !surface.is_buried(t))
             .map(|t| surface.triangles()[t])
             .collect();
+        // The outermost points of a surface lie inside no part, so some triangle is always
+        // reachable; should rounding say otherwise, contact uses them all.
+        if reachable.is_empty() {
+            reachable = surface.triangles().to_vec();
+        }
         // A watertight surface's pseudonormals give a sound inside/outside answer; any other
         // asks its winding number.
         let (flags, winding) = if surface.is_watertight() {
@@ -82,7 +87,7 @@ impl Body {
             )
         };
         let mesh = TriMesh::with_flags(vertices, reachable.clone(), flags)
-            .expect("a TriSurface has triangles outside its other parts");
+            .expect("a TriSurface has triangles");
         let radius = surface.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max);
         let sharp = reachable_features(&surface, &reachable, DEFAULT_SHARP_ANGLE);
         let shading = Shading::new(surface.vertices(), &reachable, &sharp, DEFAULT_SHARP_ANGLE);
