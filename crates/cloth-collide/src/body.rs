@@ -86,8 +86,8 @@ impl Body {
                 Some(WindingTree::new(surface.vertices(), surface.triangles())),
             )
         };
-        let mesh = TriMesh::with_flags(vertices, reachable.clone(), flags)
-            .expect("a TriSurface has triangles");
+        let mesh =
+            TriMesh::with_flags(vertices, reachable.clone(), flags).expect("a TriSurface has triangles");
         let radius = surface.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max);
         let sharp = reachable_features(&surface, &reachable, DEFAULT_SHARP_ANGLE);
         let shading = Shading::new(surface.vertices(), &reachable, &sharp, DEFAULT_SHARP_ANGLE);

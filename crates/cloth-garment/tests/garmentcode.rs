@@ -672,3 +672,36 @@ fn a_pattern_in_the_wrong_units_is_refused_before_meshing() {
     let ratio = estimate / garment.mesh.triangles().len() as f64;
     assert!((0.8..1.25).contains(&ratio), "estimate / meshed = {ratio}");
 }
+
+#[test]
+fn seams_on_edges_shorter_than_a_cell_are_sewn_keeping_each_side_length() {
+    // GarmentCode's sampled top pairs a 1.5 mm edge of the front torso with a 0.75 mm edge
+    // of the back, ten times shorter than the cells: sewn as one piece on each side, each
+    // keeping its own length.
+    let pattern = from_path(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/garmentcode/patterns/rand_1_057.json"),
+        &ImportOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let length = |side: &cloth_garment::SeamSide| pattern.panels[side.panel].outline[side.edge].length();
+    let short: Vec<usize> = (0..pattern.seams.len())
+        .filter(|&k| length(&pattern.seams[k].a).max(length(&pattern.seams[k].b)) < 0.002)
+        .collect();
+    assert_eq!(short.len(), 2, "the left and right torso's");
+    let k = short[0];
+    let seam = &pattern.seams[k];
+    let (la, lb) = (length(&seam.a), length(&seam.b));
+    assert!(la.min(lb) < 0.001, "{la} {lb}");
+    let h = 0.015;
+    let garment = GarmentBuilder::new(pattern)
+        .edge_length(h)
+        .build()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let x = garment.mesh.positions();
+    let pairs = &garment.seams[k].pairs;
+    assert_eq!(pairs.len(), 2, "{}", garment.seams[k].name);
+    for (side, length) in [(0, la), (1, lb)] {
+        let d = (x[pairs[1][side]] - x[pairs[0][side]]).norm();
+        assert!((d - length).abs() < 1e-9, "side {side}: {d} against {length}");
+    }
+}
