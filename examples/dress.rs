@@ -18,7 +18,7 @@ use cloth::collide::Bodies;
 use cloth::garment::sewing::{drape, drape_simulation, sew, Sewn};
 use cloth::garment::Garment;
 use cloth::scene_file::{ClothSpec, PreparedCloth, SceneFile};
-use cloth::{Fabric, Integrator, SolverSettings, StrainReport};
+use cloth::{Fabric, Integrator, Interrupt, SolverSettings, StrainReport};
 use std::ops::ControlFlow;
 use std::path::Path;
 use std::sync::Arc;
@@ -80,9 +80,13 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             bodies,
             meshing,
         } = sew_dress(&scene, &dir)?;
-        let draped = drape(&sewn, bodies.clone(), &scene.drape_settings(), |_, _| {
-            ControlFlow::Continue(())
-        })?;
+        let draped = drape(
+            &sewn,
+            bodies.clone(),
+            &scene.drape_settings(),
+            &Interrupt::default(),
+            |_, _| ControlFlow::Continue(()),
+        )?;
         let total = start.elapsed().as_secs_f64();
         let sim = &draped.simulation;
         let strain = StrainReport::new(sim.mesh(), sim.positions());
@@ -153,6 +157,7 @@ fn sew_dress(scene: &SceneFile, dir: &Path) -> Result<SewnDress, Box<dyn std::er
         &fabrics,
         prepared.bodies.clone(),
         &scene.sewing_settings(),
+        &Interrupt::default(),
         |_, _, _| ControlFlow::Continue(()),
     )?;
     Ok(SewnDress {

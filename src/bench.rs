@@ -5,7 +5,7 @@ use crate::garment::sewing::{drape_simulation, sew};
 use crate::scene_file::{ClothSpec, PreparedCloth, SceneFile};
 use crate::scenes::SphereDrop;
 use cloth_core::{
-    Fabric, GridBuilder, Pin, SelfCollision, Simulation, SimulationBuilder, SolverSettings, Vec3,
+    Fabric, GridBuilder, Interrupt, Pin, SelfCollision, Simulation, SimulationBuilder, SolverSettings, Vec3,
 };
 use serde::Serialize;
 use std::ops::ControlFlow;
@@ -73,6 +73,7 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
         &fabrics,
         bodies.clone(),
         &scene.sewing_settings(),
+        &Interrupt::default(),
         |_, _, _| ControlFlow::Continue(()),
     )
     .map_err(|x| e(&x))?;

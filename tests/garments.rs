@@ -8,7 +8,7 @@ use cloth::garment::mannequin::{Landmarks, Mannequin, Measurements};
 use cloth::garment::sewing::{drape, sew, DrapeSettings, Draped, SewingSettings, Sewn};
 use cloth::garment::{GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
-use cloth::{StopReason, StrainReport, Vec3};
+use cloth::{Interrupt, StopReason, StrainReport, Vec3};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
@@ -64,13 +64,22 @@ fn dress(pattern: &str, body: Body) -> Dressed {
         )
         .unwrap();
     let settings = SewingSettings::default();
-    let sewn = sew(&garment, &fabrics, bodies.clone(), &settings, |_, _, _| {
-        ControlFlow::Continue(())
-    })
+    let sewn = sew(
+        &garment,
+        &fabrics,
+        bodies.clone(),
+        &settings,
+        &Interrupt::default(),
+        |_, _, _| ControlFlow::Continue(()),
+    )
     .unwrap();
-    let draped = drape(&sewn, bodies.clone(), &DrapeSettings::default(), |_, _| {
-        ControlFlow::Continue(())
-    })
+    let draped = drape(
+        &sewn,
+        bodies.clone(),
+        &DrapeSettings::default(),
+        &Interrupt::default(),
+        |_, _| ControlFlow::Continue(()),
+    )
     .unwrap();
     let sim = &draped.simulation;
     let (depth_inside, _) = bodies.deepest_inside(sim.time(), sim.positions());

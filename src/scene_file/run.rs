@@ -41,6 +41,7 @@ impl Prepared {
         observer: &mut dyn RunObserver,
     ) -> Result<RunResult, SceneFileError> {
         let start = Instant::now();
+        let interrupt = observer.interrupt();
         let mut stages = Vec::new();
         let outcome;
         let mut gap = None;
@@ -56,17 +57,26 @@ impl Prepared {
                 );
                 let (sewing, drape_settings) = (scene.sewing_settings(), scene.drape_settings());
                 rec.begin("sewing", sewing.max_steps);
-                let sewn = sew(&garment, &fabrics, self.bodies.clone(), &sewing, |sim, s, _| {
-                    rec.step(sim, s)
-                });
+                let sewn = sew(
+                    &garment,
+                    &fabrics,
+                    self.bodies.clone(),
+                    &sewing,
+                    &interrupt,
+                    |sim, s, _| rec.step(sim, s),
+                );
                 match sewn {
                     Ok(sewn) => {
                         stages.push(rec.end("sewn"));
                         gap = Some(sewn.report.max_gap);
                         rec.begin("draping", drape_settings.max_steps);
-                        match drape(&sewn, self.bodies.clone(), &drape_settings, |sim, s| {
-                            rec.step(sim, s)
-                        }) {
+                        match drape(
+                            &sewn,
+                            self.bodies.clone(),
+                            &drape_settings,
+                            &interrupt,
+                            |sim, s| rec.step(sim, s),
+                        ) {
                             Ok(draped) => outcome = ended(&mut rec, &mut stages, draped.outcome.reason),
                             Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
                         }
@@ -93,6 +103,7 @@ impl Prepared {
                     file: scene.name.clone(),
                     source,
                 })?;
+                sim.set_interrupt(interrupt);
                 let mut rec = Recorder::new(observer, &scene.output, frames_dir, sim.mesh(), sim.positions());
                 rec.begin("running", scene.rest.max_steps);
                 match sim.run_to_rest_with(&scene.rest, |sim, s| rec.step(sim, s)) {

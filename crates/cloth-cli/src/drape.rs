@@ -7,13 +7,13 @@ use cloth::collide::{SurfaceOptions, TriSurface};
 use cloth::drape::{find_patterns, write_summary, DrapeRequest, PatternInput, SummaryEntry};
 use cloth::presets::FabricLibrary;
 use cloth::scene_file::{claim_output_folder, RunObserver, UpAxis};
-use cloth::{Simulation, StepStats};
+use cloth::{Interrupt, Simulation, StepStats};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -73,7 +73,7 @@ fn folder_for(out: &Path, pattern: &PatternInput, force: bool) -> Result<PathBuf
 /// Sees one pattern's run: stops it for an interrupt or the time limit, and tells the
 /// progress display where it is.
 struct Watch<'a> {
-    interrupted: &'a AtomicBool,
+    interrupted: &'a Arc<AtomicBool>,
     deadline: Option<Instant>,
     timed_out: bool,
     status: &'a Mutex<Vec<String>>,
@@ -83,6 +83,14 @@ struct Watch<'a> {
 }
 
 impl RunObserver for Watch<'_> {
+    fn interrupt(&self) -> Interrupt {
+        let interrupt = Interrupt::new(self.interrupted.clone());
+        match self.deadline {
+            Some(d) => interrupt.with_deadline(d),
+            None => interrupt,
+        }
+    }
+
     fn step(&mut self, stage: &'static str, _sim: &Simulation, stats: &StepStats) -> ControlFlow<()> {
         if self.interrupted.load(Ordering::Relaxed) {
             return ControlFlow::Break(());
@@ -106,7 +114,7 @@ fn drape_one(
     pattern: &PatternInput,
     request: &DrapeRequest,
     args: &DrapeArgs,
-    interrupted: &AtomicBool,
+    interrupted: &Arc<AtomicBool>,
     status: &Mutex<Vec<String>>,
     slot: usize,
 ) -> SummaryEntry {
@@ -159,7 +167,10 @@ fn drape_one(
     let Some(mut entry) = SummaryEntry::from_report(&pattern.name, &pattern.path, &folder, false) else {
         return refused(format!("its report in '{}' cannot be read", folder.display()));
     };
-    if watch.timed_out {
+    // Stopped inside a step, the observer never saw the deadline pass.
+    let timed_out =
+        watch.timed_out || (entry.outcome == "interrupted" && !interrupted.load(Ordering::Relaxed));
+    if timed_out {
         entry.outcome = "failed".into();
         entry.failure = Some(format!(
             "stopped by the time limit of {} s ({})",

@@ -4,7 +4,7 @@
 //! lands: the next step breaks and the run writes what it has.
 
 use cloth::scene_file::RunObserver;
-use cloth::{Simulation, StepStats, StrainReport};
+use cloth::{Interrupt, Simulation, StepStats, StrainReport};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::ops::ControlFlow;
@@ -86,6 +86,10 @@ impl Progress {
 }
 
 impl RunObserver for Progress {
+    fn interrupt(&self) -> Interrupt {
+        Interrupt::new(self.interrupted.clone())
+    }
+
     fn stage(&mut self, stage: &'static str, max_steps: u64) {
         self.stage = stage;
         self.max_steps = max_steps;

@@ -88,15 +88,19 @@ pub enum SimError {
         last_good: u64,
         reason: String,
     },
+    /// The simulation's [`Interrupt`](crate::Interrupt) was raised during a step.
+    #[error("interrupted during step {step}; the state of step {last_good} is kept")]
+    Interrupted { step: u64, last_good: u64 },
 }
 
 impl SimError {
     /// The step that failed; `None` for a parameter refused before any step.
     pub fn step(&self) -> Option<u64> {
         match self {
-            Self::Diverged { step, .. } | Self::InvalidPin { step, .. } | Self::Solver { step, .. } => {
-                Some(*step)
-            }
+            Self::Diverged { step, .. }
+            | Self::InvalidPin { step, .. }
+            | Self::Solver { step, .. }
+            | Self::Interrupted { step, .. } => Some(*step),
             Self::Param(_) => None,
         }
     }

@@ -30,8 +30,8 @@ pub use mesh::{ClothMesh, GridBuilder, GridDiagonals, GridShape};
 pub use metrics::{GridStretch, StrainReport};
 pub use self_contact::{closest_self_approach, count_self_intersections, Intersections, SelfCollision};
 pub use solver::{
-    Constraint, ConstraintKind, Integrator, PcgSettings, Pin, PinMotion, RestCriteria, RestOutcome, SeamPull,
-    Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
+    Constraint, ConstraintKind, Integrator, Interrupt, PcgSettings, Pin, PinMotion, RestCriteria,
+    RestOutcome, SeamPull, Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
 };
 
 /// 3-vectors and 3x3 blocks used throughout the engine.

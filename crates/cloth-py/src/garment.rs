@@ -12,6 +12,7 @@ use cloth::garment::garmentcode::{self, ImportOptions};
 use cloth::garment::sewing::{drape, sew, DrapeSettings, SewingSettings, Sewn};
 use cloth::garment::GarmentBuilder;
 use cloth::presets::FabricLibrary;
+use cloth::Interrupt;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -182,9 +183,14 @@ impl Garment {
         let bodies = collider(&bodies);
         let garment = &self.inner;
         let sewn = py.detach(|| {
-            sew(garment, &fabrics, bodies, &settings, |sim, stats, _| {
-                watcher.observe("sewing", sim, stats)
-            })
+            sew(
+                garment,
+                &fabrics,
+                bodies,
+                &settings,
+                &Interrupt::default(),
+                |sim, stats, _| watcher.observe("sewing", sim, stats),
+            )
         });
         if let Some(e) = watcher.take_error() {
             return Err(e);
@@ -256,7 +262,7 @@ impl SewnGarment {
         let sewn = &self.inner;
         let collider = bodies.clone();
         let draped = py.detach(|| {
-            drape(sewn, collider, &settings, |sim, stats| {
+            drape(sewn, collider, &settings, &Interrupt::default(), |sim, stats| {
                 watcher.observe("draping", sim, stats)
             })
         });

@@ -90,8 +90,15 @@ impl Scratch {
 impl SelfContacts {
     /// Resolves the pairs that pass through each other on the straight paths of `end`
     /// (changing its end positions and velocities). Pinned particles do not yield to
-    /// impacts; particles a body holds do not yield into it.
-    pub fn resolve(&mut self, mut end: StepEnd<'_>, parallel: bool) -> ImpactCounts {
+    /// impacts; particles a body holds do not yield into it. `stop` is asked as the search
+    /// for impacts goes (a pass over cloth placed through itself can take minutes): the
+    /// passes end when it says so, leaving a state the caller must not keep.
+    pub fn resolve(
+        &mut self,
+        mut end: StepEnd<'_>,
+        parallel: bool,
+        stop: impl Fn() -> bool + Sync,
+    ) -> ImpactCounts {
         let mut counts = ImpactCounts::default();
         for &i in &self.response.shifted {
             self.response.shift[i as usize] = 0.0;
@@ -101,7 +108,10 @@ impl SelfContacts {
             // Pairs ending too close are put right by impulses only; zones and the last
             // resort are for pairs passing through each other.
             let impulses = pass < IMPULSE_PASSES;
-            self.find_impacts(end.x0, end.x1, pass == 0, impulses, parallel);
+            self.find_impacts(end.x0, end.x1, pass == 0, impulses, parallel, &stop);
+            if stop() {
+                break;
+            }
             let impacts = std::mem::take(&mut self.response.impacts);
             let sc = &mut self.response;
             sc.dirty.fill(false);
@@ -170,7 +180,15 @@ impl SelfContacts {
 
     /// The impacts on the paths from `x0` to `x1`: of every pair (`full`), or of the pairs
     /// with a dirty particle; with `closing`, pairs ending too close too.
-    fn find_impacts(&mut self, x0: &[Vec3], x1: &[Vec3], full: bool, closing: bool, parallel: bool) {
+    fn find_impacts(
+        &mut self,
+        x0: &[Vec3],
+        x1: &[Vec3],
+        full: bool,
+        closing: bool,
+        parallel: bool,
+        stop: &(impl Fn() -> bool + Sync),
+    ) {
         let topo = &self.topology;
         let touch = self.touch;
         // Near enough to cross, or to end the step too close.
@@ -218,6 +236,9 @@ impl SelfContacts {
         let mut impacts = std::mem::take(&mut self.response.impacts);
         self.impact_search
             .run(&surface.tasks, parallel, &mut impacts, |task, found| {
+                if stop() {
+                    return;
+                }
                 surface.triangle_pairs(task, &search, |s, t| {
                     if s == t {
                         return;

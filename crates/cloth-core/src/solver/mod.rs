@@ -3,6 +3,7 @@
 mod assembly;
 mod explicit;
 mod implicit;
+mod interrupt;
 mod pins;
 mod rest;
 mod settings;
@@ -11,6 +12,7 @@ mod stats;
 
 pub use crate::linalg::{Constraint, ConstraintKind, PcgSettings};
 pub use assembly::SeamPull;
+pub use interrupt::Interrupt;
 pub use pins::{Pin, PinMotion};
 pub use rest::{RestCriteria, RestOutcome, StopReason};
 pub use settings::{Integrator, SolverSettings};

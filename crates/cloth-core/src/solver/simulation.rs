@@ -1,7 +1,9 @@
 //! The Simulation: owns the state and all scratch, and steps.
 
 use super::assembly::{ForceModel, SeamPull};
-use super::{Integrator, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason};
+use super::{
+    Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
+};
 use crate::contact::{Collider, Contacts};
 use crate::error::{DivergenceReason, ParamError, SimError};
 use crate::fabric::Fabric;
@@ -237,6 +239,7 @@ impl SimulationBuilder {
                 pcg: Pcg::new(n),
                 pin_targets: Vec::with_capacity(pin_count),
             },
+            interrupt: Interrupt::default(),
         })
     }
 }
@@ -284,6 +287,7 @@ pub struct Simulation {
     pub(super) time: f64,
     pub(super) steps: u64,
     pub(super) ws: Workspace,
+    pub(super) interrupt: Interrupt,
 }
 
 impl Simulation {
@@ -321,6 +325,13 @@ impl Simulation {
         self.model.bending_calibration()
     }
     /// How hard the seams given to the builder pull (zero: not at all).
+    /// Lets a flag or deadline stop the run inside a step, not only between steps: a
+    /// step interrupted is undone and fails with [`SimError::Interrupted`]
+    /// ([`Simulation::run_to_rest_with`] reports it as [`StopReason::Stopped`]).
+    pub fn set_interrupt(&mut self, interrupt: Interrupt) {
+        self.interrupt = interrupt;
+    }
+
     pub fn set_seam_pull(&mut self, pull: SeamPull) -> Result<(), ParamError> {
         ParamError::check(
             pull.stiffness.is_finite() && pull.stiffness >= 0.0,
@@ -399,6 +410,13 @@ impl Simulation {
     }
 
     fn try_step(&mut self, velocity_accuracy: f64) -> Result<StepStats, SimError> {
+        let interrupted = SimError::Interrupted {
+            step: self.steps + 1,
+            last_good: self.steps,
+        };
+        if self.interrupt.is_raised() {
+            return Err(interrupted);
+        }
         let h = self.settings.time_step;
         self.ws.pin_targets.clear();
         for pin in &self.pins {
@@ -435,6 +453,10 @@ impl Simulation {
         } else {
             integrate(self)
         };
+        // The impact passes stop early when interrupted: their state is not the step's.
+        if self.interrupt.is_armed() && self.interrupt.is_raised() {
+            return Err(interrupted);
+        }
         let mut stats = result.map_err(|reason| SimError::Solver {
             step: self.steps + 1,
             last_good: self.steps,
@@ -518,7 +540,18 @@ impl Simulation {
         let mut calm = 0u32;
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
-            last = self.step_to(accuracy)?;
+            last = match self.step_to(accuracy) {
+                Ok(stats) => stats,
+                // Stopped inside the step: the state is the last good step's.
+                Err(SimError::Interrupted { .. }) => {
+                    return Ok(RestOutcome {
+                        reason: StopReason::Stopped,
+                        steps: k - 1,
+                        last,
+                    })
+                }
+                Err(e) => return Err(e),
+            };
             if observe(self, &last).is_break() {
                 return Ok(RestOutcome {
                     reason: StopReason::Stopped,
@@ -645,7 +678,8 @@ impl Simulation {
             support: &ws.support,
             h,
         };
-        let counts = sc.resolve(end, self.settings.parallel);
+        let interrupt = &self.interrupt;
+        let counts = sc.resolve(end, self.settings.parallel, || interrupt.is_raised());
         if let Some(contacts) = &mut self.contacts {
             for (i, d) in sc.shifted() {
                 contacts.particles.displaced(i, d);

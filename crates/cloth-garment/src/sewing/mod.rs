@@ -6,8 +6,8 @@ mod settings;
 pub use settings::{DrapeSettings, SewingSettings};
 
 use crate::garment::{Garment, GarmentError, Welded};
-use cloth_core::{Collider, Fabric, Integrator, RestOutcome, SeamPull, Simulation, SimulationBuilder};
-use cloth_core::{SolverSettings, StepStats, Vec3};
+use cloth_core::{Collider, Fabric, Integrator, Interrupt, RestOutcome, SeamPull, SimError, Simulation};
+use cloth_core::{SimulationBuilder, SolverSettings, StepStats, Vec3};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
@@ -41,12 +41,14 @@ pub struct Sewn {
 /// [`SewingSettings::ramp_time`] to a force that stretches the cloth by at most
 /// [`SewingSettings::pull_strain`], and extra air drag so panels glide into place. Stops
 /// when every seam gap is under the tolerance, then welds. `observe` sees every step (with
-/// the widest gap, m) and may stop it ([`GarmentError::Stopped`]).
+/// the widest gap, m) and may stop it ([`GarmentError::Stopped`]), as may `interrupt`
+/// inside a step.
 pub fn sew(
     garment: &Garment,
     panel_fabrics: &[Fabric],
     collider: Arc<dyn Collider>,
     settings: &SewingSettings,
+    interrupt: &Interrupt,
     mut observe: impl FnMut(&Simulation, &StepStats, f64) -> ControlFlow<()>,
 ) -> Result<Sewn, GarmentError> {
     settings.validate()?;
@@ -101,6 +103,7 @@ pub fn sew(
         .seams(garment.seam_pairs())
         .collider(collider)
         .build()?;
+    sim.set_interrupt(interrupt.clone());
     let pull = settings.pull_strain * softest * spacing;
     let mut cg = 0;
     let (mut seam, mut gap) = garment.widest_gap(sim.positions());
@@ -124,9 +127,15 @@ pub fn sew(
             stiffness: force / settings.reach,
             reach: settings.reach,
         })?;
-        let stats = sim.step().map_err(|source| GarmentError::Sim {
-            stage: "sewing",
-            source,
+        let stats = sim.step().map_err(|source| match source {
+            SimError::Interrupted { .. } => GarmentError::Stopped {
+                stage: "sewing",
+                steps,
+            },
+            source => GarmentError::Sim {
+                stage: "sewing",
+                source,
+            },
         })?;
         steps += 1;
         cg += stats.cg_iterations;
@@ -188,17 +197,20 @@ pub fn drape_simulation(
 }
 
 /// Drapes the sewn garment until at rest (the source's stopping mechanism) or the step
-/// limit. `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]).
+/// limit. `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]),
+/// as may `interrupt` inside a step.
 pub fn drape(
     sewn: &Sewn,
     collider: Arc<dyn Collider>,
     settings: &DrapeSettings,
+    interrupt: &Interrupt,
     mut observe: impl FnMut(&Simulation, &StepStats) -> ControlFlow<()>,
 ) -> Result<Draped, GarmentError> {
     settings.validate()?;
     let start = Instant::now();
     let rest = settings.rest();
     let mut simulation = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
+    simulation.set_interrupt(interrupt.clone());
     let mut cg = 0;
     let outcome = simulation
         .run_to_rest_with(&rest, |sim, stats| {
