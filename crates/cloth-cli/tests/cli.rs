@@ -562,6 +562,20 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
     assert_eq!(summary[0]["skipped"], true);
     assert_eq!(summary[0]["outcome"], "finished");
 
+    // A time limit passed before the first step ends: counted failed, with its report.
+    let o = run(&["--force", "--time-limit", "0.01"]);
+    assert_eq!(o.status.code(), Some(1));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary[0]["outcome"], "failed", "{}", summary[0]);
+    assert!(
+        summary[0]["failure"].as_str().unwrap().contains("stopped by the time limit of 0.01 s"),
+        "{}",
+        summary[0]
+    );
+    assert!(!out.join("rand_1_001/finished.json").exists());
+    assert!(out.join("rand_1_001/report.json").is_file());
+
     // Bad input to the batch itself: exit 2 before anything runs.
     let missing = dir.join("missing.obj");
     let bad_body = cloth(&[
