@@ -70,12 +70,11 @@ fn folder_for(out: &Path, pattern: &PatternInput, force: bool) -> Result<PathBuf
     Ok(folder)
 }
 
-/// Sees one pattern's run: stops it for an interrupt or the time limit, and tells the
-/// progress display where it is.
+/// Sees one pattern's run: gives it the interrupt (Ctrl-C and the time limit, which the
+/// simulation checks inside each step), and tells the progress display where it is.
 struct Watch<'a> {
     interrupted: &'a Arc<AtomicBool>,
     deadline: Option<Instant>,
-    timed_out: bool,
     status: &'a Mutex<Vec<String>>,
     slot: usize,
     name: &'a str,
@@ -92,13 +91,6 @@ impl RunObserver for Watch<'_> {
     }
 
     fn step(&mut self, stage: &'static str, _sim: &Simulation, stats: &StepStats) -> ControlFlow<()> {
-        if self.interrupted.load(Ordering::Relaxed) {
-            return ControlFlow::Break(());
-        }
-        if self.deadline.is_some_and(|d| Instant::now() >= d) {
-            self.timed_out = true;
-            return ControlFlow::Break(());
-        }
         if self.last.elapsed() >= Duration::from_millis(250) {
             self.last = Instant::now();
             if let Ok(mut s) = self.status.lock() {
@@ -155,7 +147,6 @@ fn drape_one(
     let mut watch = Watch {
         interrupted,
         deadline: args.time_limit.map(|s| start + Duration::from_secs_f64(s)),
-        timed_out: false,
         status,
         slot,
         name: &pattern.name,
@@ -167,10 +158,8 @@ fn drape_one(
     let Some(mut entry) = SummaryEntry::from_report(&pattern.name, &pattern.path, &folder, false) else {
         return refused(format!("its report in '{}' cannot be read", folder.display()));
     };
-    // Stopped inside a step, the observer never saw the deadline pass.
-    let timed_out =
-        watch.timed_out || (entry.outcome == "interrupted" && !interrupted.load(Ordering::Relaxed));
-    if timed_out {
+    // Interrupted, and not by Ctrl-C: the deadline passed.
+    if entry.outcome == "interrupted" && !interrupted.load(Ordering::Relaxed) {
         entry.outcome = "failed".into();
         entry.failure = Some(format!(
             "stopped by the time limit of {} s ({})",

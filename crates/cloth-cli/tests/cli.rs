@@ -569,7 +569,10 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary[0]["outcome"], "failed", "{}", summary[0]);
     assert!(
-        summary[0]["failure"].as_str().unwrap().contains("stopped by the time limit of 0.01 s"),
+        summary[0]["failure"]
+            .as_str()
+            .unwrap()
+            .contains("stopped by the time limit of 0.01 s"),
         "{}",
         summary[0]
     );

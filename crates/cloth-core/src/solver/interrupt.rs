@@ -34,9 +34,4 @@ impl Interrupt {
         self.flag.as_ref().is_some_and(|f| f.load(Ordering::Relaxed))
             || self.deadline.is_some_and(|d| Instant::now() >= d)
     }
-
-    /// Whether it can ever be raised (a step skips its checks otherwise).
-    pub fn is_armed(&self) -> bool {
-        self.flag.is_some() || self.deadline.is_some()
-    }
 }

@@ -324,7 +324,6 @@ impl Simulation {
     pub fn bending_calibration(&self) -> &[[f64; 2]] {
         self.model.bending_calibration()
     }
-    /// How hard the seams given to the builder pull (zero: not at all).
     /// Lets a flag or deadline stop the run inside a step, not only between steps: a
     /// step interrupted is undone and fails with [`SimError::Interrupted`]
     /// ([`Simulation::run_to_rest_with`] reports it as [`StopReason::Stopped`]).
@@ -332,6 +331,7 @@ impl Simulation {
         self.interrupt = interrupt;
     }
 
+    /// How hard the seams given to the builder pull (zero: not at all).
     pub fn set_seam_pull(&mut self, pull: SeamPull) -> Result<(), ParamError> {
         ParamError::check(
             pull.stiffness.is_finite() && pull.stiffness >= 0.0,
@@ -454,7 +454,7 @@ impl Simulation {
             integrate(self)
         };
         // The impact passes stop early when interrupted: their state is not the step's.
-        if self.interrupt.is_armed() && self.interrupt.is_raised() {
+        if self.interrupt.is_raised() {
             return Err(interrupted);
         }
         let mut stats = result.map_err(|reason| SimError::Solver {
