@@ -362,6 +362,9 @@ class StepStats:
     self_frozen: int
     self_unresolved: int
     self_collision_seconds: float
+    substeps: int
+    retries: int
+    smallest_substep: float
     def to_dict(self) -> dict[str, Any]: ...
 
 @final
@@ -400,7 +403,7 @@ class Simulation:
 
     ``pins`` are particle numbers held where they start (or at ``pin_positions``,
     ``(K, 3)``); ``settings`` are a scene's ``[solver]`` keys (``integrator``,
-    ``time_step``, ``gravity``, ``wind``, ``pcg``, ``max_speed``, ``max_kinetic_energy``,
+    ``time_step``, ``gravity``, ``wind``, ``pcg``, ``max_speed``, ``max_halvings``, ``max_kinetic_energy``,
     ``parallel``); ``self_collision`` is ``True`` (the default), ``False``, or a scene's
     ``[self_collision]`` keys (``enabled``, ``thickness``, ``friction``, ``stiffness``).
     Stepping releases the GIL; a divergence raises :class:`SimulationError` and keeps the

@@ -42,13 +42,13 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
     )?;
     writeln!(
         out,
-        "| stage | steps | seconds | CG iterations | ended |\n|---|---|---|---|---|"
+        "| stage | steps | seconds | CG iterations | steps cut (retries) | ended |\n|---|---|---|---|---|---|"
     )?;
     for s in &report.stages {
         writeln!(
             out,
-            "| {} | {} | {:.2} | {} | {} |",
-            s.stage, s.steps, s.seconds, s.cg_iterations, s.ended
+            "| {} | {} | {:.2} | {} | {} ({}) | {} |",
+            s.stage, s.steps, s.seconds, s.cg_iterations, s.steps_cut, s.retries, s.ended
         )?;
     }
     let s = &report.strain;
@@ -72,6 +72,23 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
     )?;
     if let Some(gap) = report.largest_seam_gap {
         writeln!(out, "| largest seam gap | {:.2} mm |", 1e3 * gap)?;
+    }
+    if !report.seam_stalls.is_empty() {
+        writeln!(
+            out,
+            "\nSeams that stopped closing while sewn, and the pull raised to close them:\n\n\
+             | step | widest seam | gap, mm | pull (x full) |\n|---|---|---|---|"
+        )?;
+        for s in &report.seam_stalls {
+            writeln!(
+                out,
+                "| {} | {} | {:.2} | {} |",
+                s.step,
+                s.seam,
+                1e3 * s.gap,
+                s.pull_factor
+            )?;
+        }
     }
     if !report.checkpoints.is_empty() {
         writeln!(

@@ -29,6 +29,9 @@ pub(super) struct Recorder<'a> {
     /// This stage's steps, CG iterations and step times (ms).
     steps: u64,
     cg: usize,
+    /// Steps taken in more than one substep, and substeps retried, this stage.
+    cut: u64,
+    retries: u64,
     step_ms: Vec<f64>,
     checkpoint_rows: Vec<Checkpoint>,
     frames: Vec<FrameRecord>,
@@ -70,6 +73,8 @@ impl<'a> Recorder<'a> {
             stage_start: Instant::now(),
             steps: 0,
             cg: 0,
+            cut: 0,
+            retries: 0,
             step_ms: Vec::new(),
             checkpoint_rows: Vec::new(),
             frames: Vec::new(),
@@ -82,6 +87,8 @@ impl<'a> Recorder<'a> {
         self.stage_start = Instant::now();
         self.steps = 0;
         self.cg = 0;
+        self.cut = 0;
+        self.retries = 0;
         self.step_ms.clear();
         self.observer.stage(stage, max_steps);
     }
@@ -93,6 +100,8 @@ impl<'a> Recorder<'a> {
             steps: self.steps,
             seconds: self.stage_start.elapsed().as_secs_f64(),
             cg_iterations: self.cg,
+            steps_cut: self.cut,
+            retries: self.retries,
             ended,
         }
     }
@@ -158,6 +167,8 @@ impl<'a> Recorder<'a> {
         self.time = sim.time();
         self.steps += 1;
         self.cg += stats.cg_iterations;
+        self.cut += u64::from(stats.substeps > 1);
+        self.retries += u64::from(stats.retries);
         self.step_ms.push(
             1e3 * (stats.assembly_seconds
                 + stats.solve_seconds

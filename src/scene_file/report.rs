@@ -11,6 +11,11 @@ pub struct StageReport {
     pub steps: u64,
     pub seconds: f64,
     pub cg_iterations: usize,
+    /// Steps taken in shorter substeps, after one diverged, did not converge or met too
+    /// many impacts ...
+    pub steps_cut: u64,
+    /// ... and the substeps undone and taken again at half the length.
+    pub retries: u64,
     /// Why it ended: "sewn", "at_rest", "step_limit", "interrupted" or "failed".
     pub ended: &'static str,
 }
@@ -108,6 +113,8 @@ pub struct RunReport {
     /// The widest seam gap: when the seams were welded, or at the end if they never were,
     /// m (garments only).
     pub largest_seam_gap: Option<f64>,
+    /// When seams stopped closing while sewn, and how the pull was raised to close them.
+    pub seam_stalls: Vec<crate::garment::sewing::SeamStall>,
     pub checkpoints: Vec<Checkpoint>,
     /// What a fabric test reads from the cloth at rest (a finished run of a test scene).
     pub measurement: Option<Measurement>,

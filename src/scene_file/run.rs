@@ -45,6 +45,7 @@ impl Prepared {
         let mut stages = Vec::new();
         let outcome;
         let mut gap = None;
+        let mut seam_stalls = Vec::new();
         let mut sheet_test = None;
         let (settings, rec) = match self.cloth {
             PreparedCloth::Garment { garment, fabrics } => {
@@ -69,6 +70,7 @@ impl Prepared {
                     Ok(sewn) => {
                         stages.push(rec.end("sewn"));
                         gap = Some(sewn.report.max_gap);
+                        seam_stalls.clone_from(&sewn.report.stalls);
                         rec.begin("draping", drape_settings.max_steps);
                         match drape(
                             &sewn,
@@ -150,6 +152,7 @@ impl Prepared {
             self_intersections,
             body_intersections,
             largest_seam_gap: gap,
+            seam_stalls,
             checkpoints,
             measurement,
             frames,

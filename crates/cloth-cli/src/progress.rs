@@ -127,8 +127,16 @@ impl RunObserver for Progress {
             self.last_strain = Some(Instant::now());
         }
         if self.verbosity == Verbosity::Verbose {
+            let substeps = if stats.substeps > 1 || stats.retries > 0 {
+                format!(
+                    " in {} substeps (shortest {:.2e} s, {} retried)",
+                    stats.substeps, stats.smallest_substep, stats.retries
+                )
+            } else {
+                String::new()
+            };
             self.say(&format!(
-                "{} step {}: t {:.4} s, {} CG iterations (residual {:.1e}), max speed {:.2e} m/s, \
+                "{} step {}{substeps}: t {:.4} s, {} CG iterations (residual {:.1e}), max speed {:.2e} m/s, \
                  {} contacts, {} self-contacts, {} self-impacts, {} in impact zones, assembly {:.1} ms, solve {:.1} ms, \
                  contact {:.1} ms, self-collision {:.1} ms",
                 self.stage,

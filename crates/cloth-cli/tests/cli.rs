@@ -265,8 +265,18 @@ fn a_diverging_run_exits_with_1_and_writes_its_report() {
 
 #[test]
 fn ctrl_c_stops_the_run_and_writes_the_state_reached() {
+    signal_stops_the_run_and_writes_the_state_reached("INT");
+}
+
+/// A batch scheduler or `timeout` stops a run with SIGTERM: it ends as Ctrl-C does.
+#[test]
+fn sigterm_stops_the_run_and_writes_the_state_reached() {
+    signal_stops_the_run_and_writes_the_state_reached("TERM");
+}
+
+fn signal_stops_the_run_and_writes_the_state_reached(signal: &str) {
     use std::io::{BufRead, BufReader};
-    let dir = scratch("interrupt");
+    let dir = scratch(&format!("interrupt_{signal}"));
     let scene = dir.join("sheet.toml");
     // A run far longer than the test waits.
     std::fs::write(
@@ -291,7 +301,7 @@ fn ctrl_c_stops_the_run_and_writes_the_state_reached() {
     assert!(first.starts_with("running: up to 100000 steps"), "{first}");
     std::thread::sleep(std::time::Duration::from_millis(500));
     let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([&format!("-{signal}"), &child.id().to_string()])
         .status()
         .unwrap();
     assert!(kill.success());

@@ -109,9 +109,23 @@ impl SimError {
 /// What the divergence guard saw.
 #[derive(Debug, Clone, PartialEq)]
 pub enum DivergenceReason {
-    NonFinite { particle: usize },
-    SpeedLimit { particle: usize, speed: f64, limit: f64 },
-    EnergyLimit { energy: f64, limit: f64 },
+    NonFinite {
+        particle: usize,
+    },
+    SpeedLimit {
+        particle: usize,
+        speed: f64,
+        limit: f64,
+    },
+    EnergyLimit {
+        energy: f64,
+        limit: f64,
+    },
+    /// The impact passes found more impacts than a step may resolve.
+    ImpactBudget {
+        found: usize,
+        budget: usize,
+    },
 }
 
 impl std::fmt::Display for DivergenceReason {
@@ -131,6 +145,10 @@ impl std::fmt::Display for DivergenceReason {
             Self::EnergyLimit { energy, limit } => write!(
                 f,
                 "kinetic energy {energy:.3e} J is over the limit of {limit:.3e} J"
+            ),
+            Self::ImpactBudget { found, budget } => write!(
+                f,
+                "the cloth's layers met in {found} impacts, over the step's budget of {budget}"
             ),
         }
     }

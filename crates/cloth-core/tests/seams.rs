@@ -129,6 +129,7 @@ fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
     sim.set_seam_pull(SeamPull {
         stiffness: 0.05,
         reach: 0.01,
+        damping: 0.0,
     })
     .unwrap();
     // A pull of 0.5 mN per pair on strips of 0.6 g: a few m/s^2.
@@ -139,7 +140,8 @@ fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
     assert!(sim
         .set_seam_pull(SeamPull {
             stiffness: -1.0,
-            reach: 0.01
+            reach: 0.01,
+            damping: 0.0,
         })
         .is_err());
     let bad = SimulationBuilder::new(mesh, fabric).seams(vec![[0, 0]]).build();

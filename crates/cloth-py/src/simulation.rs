@@ -86,6 +86,15 @@ pub struct StepStats {
     /// Wall time in self-collision, s.
     #[pyo3(get)]
     pub self_collision_seconds: f64,
+    /// Substeps the step was taken in (1 at the full time step).
+    #[pyo3(get)]
+    pub substeps: u32,
+    /// Substeps undone and taken again at half the length.
+    #[pyo3(get)]
+    pub retries: u32,
+    /// The shortest substep taken, s.
+    #[pyo3(get)]
+    pub smallest_substep: f64,
     raw: cloth::StepStats,
 }
 
@@ -115,6 +124,9 @@ impl From<cloth::StepStats> for StepStats {
             self_frozen: s.self_frozen,
             self_unresolved: s.self_unresolved,
             self_collision_seconds: s.self_collision_seconds,
+            substeps: s.substeps,
+            retries: s.retries,
+            smallest_substep: s.smallest_substep,
             raw: s,
         }
     }
@@ -264,7 +276,7 @@ pub fn grid_stretch(mesh: &ClothMesh, positions: &Bound<'_, PyAny>) -> PyResult<
 
 /// A cloth on bodies, stepped by explicit or implicit Euler. `pins` are particle numbers
 /// held where they start (or at `pin_positions`, `(K, 3)`); `settings` are a scene's
-/// `[solver]` keys (`integrator`, `time_step`, `gravity`, `wind`, `pcg`, `max_speed`,
+/// `[solver]` keys (`integrator`, `time_step`, `gravity`, `wind`, `pcg`, `max_speed`, `max_halvings`,
 /// `max_kinetic_energy`, `parallel`); `self_collision` is True (the default), False, or a
 /// scene's `[self_collision]` keys (`enabled`, `thickness`, `friction`, `stiffness`).
 /// Stepping releases the GIL; a divergence raises SimulationError and keeps the last good

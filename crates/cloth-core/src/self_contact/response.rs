@@ -22,6 +22,9 @@ pub(crate) struct ImpactCounts {
     pub frozen: usize,
     /// Impacts left that nothing could stop (particles moved by their pins).
     pub unresolved: usize,
+    /// The passes found more impacts than their budget and stopped, leaving a state the
+    /// caller must not keep.
+    pub over_budget: bool,
 }
 
 /// The end of a step as the impact passes see and change it: the positions at its start
@@ -92,10 +95,12 @@ impl SelfContacts {
     /// (changing its end positions and velocities). Pinned particles do not yield to
     /// impacts; particles a body holds do not yield into it. `stop` is asked as the search
     /// for impacts goes (a pass over cloth placed through itself can take minutes): the
-    /// passes end when it says so, leaving a state the caller must not keep.
+    /// passes end when it says so, leaving a state the caller must not keep. So they do
+    /// when, given a `budget`, they have found more impacts than it in all.
     pub fn resolve(
         &mut self,
         mut end: StepEnd<'_>,
+        budget: Option<usize>,
         parallel: bool,
         stop: impl Fn() -> bool + Sync,
     ) -> ImpactCounts {
@@ -104,6 +109,7 @@ impl SelfContacts {
             self.response.shift[i as usize] = 0.0;
         }
         self.response.shifted.clear();
+        let mut found = 0;
         for pass in 0.. {
             // Pairs ending too close are put right by impulses only; zones and the last
             // resort are for pairs passing through each other.
@@ -116,6 +122,13 @@ impl SelfContacts {
             let sc = &mut self.response;
             sc.dirty.fill(false);
             if impacts.is_empty() {
+                self.response.impacts = impacts;
+                break;
+            }
+            found += impacts.len();
+            if budget.is_some_and(|b| found > b) {
+                counts.impacts = found;
+                counts.over_budget = true;
                 self.response.impacts = impacts;
                 break;
             }

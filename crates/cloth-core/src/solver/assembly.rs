@@ -47,11 +47,14 @@ struct SeamElement {
 
 /// How hard the seams pull: a zero-length spring of `stiffness` (N/m) per pair up to a
 /// gap of `reach` (m), and a constant pull of `stiffness * reach` beyond, so a wide gap
-/// is closed by a bounded force instead of one that tears the panels.
+/// is closed by a bounded force instead of one that tears the panels; and a dashpot of
+/// `damping` (N s/m) per pair on the pair's relative velocity, so a pair closes at most
+/// at about `stiffness * reach / damping` however far apart it starts.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SeamPull {
     pub stiffness: f64,
     pub reach: f64,
+    pub damping: f64,
 }
 
 /// A raw view for disjoint parallel writes (see the module comment for why they are disjoint).
@@ -271,7 +274,7 @@ impl ForceModel {
         mut stiffness: Option<StiffnessTarget<'_>>,
         parallel: bool,
     ) -> f64 {
-        let need_k = stiffness.is_some() || self.max_damping > 0.0;
+        let need_k = stiffness.is_some() || self.max_damping > 0.0 || self.seam_pull.damping > 0.0;
         let mode = if need_k {
             HessianMode::Projected
         } else {
@@ -348,8 +351,13 @@ impl ForceModel {
             let beta = self.max_damping;
             let seam_kernel = |e: &SeamElement, energy: &mut f64| {
                 let mut local = Local::<2>::default();
-                add_seam_pull(pull, [x[e.v[0] as usize], x[e.v[1] as usize]], need_k, &mut local);
+                let secant =
+                    add_seam_pull(pull, [x[e.v[0] as usize], x[e.v[1] as usize]], need_k, &mut local);
                 *energy = local.energy;
+                // The dashpot is the pair's Rayleigh damping: its Hessian is the secant
+                // stiffness times the pair's identity blocks, so `beta K` is `damping`
+                // times them.
+                let beta = beta + pull.damping / secant;
                 // SAFETY: as above.
                 unsafe { sink.put(&local, &e.v, &e.slots, beta) };
             };
@@ -382,10 +390,12 @@ impl ForceModel {
 /// exact one there, `k r / d (I - n n^T)`, has no stiffness along the gap: the implicit
 /// step would then meet a constant force as explicitly as forward Euler and carry the
 /// pair far past closing (by about `k r h^2 / m`), where the secant sees it coming.
-pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, out: &mut Local<2>) {
+/// Returns the stiffness the Hessian has, `k` or `k r / d`.
+pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, out: &mut Local<2>) -> f64 {
     let SeamPull {
         stiffness: k,
         reach: r,
+        ..
     } = pull;
     let gap = x[0] - x[1];
     let d = gap.norm();
@@ -407,6 +417,7 @@ pub(crate) fn add_seam_pull(pull: SeamPull, x: [Vec3; 2], with_hessian: bool, ou
         out.hess[0][1] -= hess;
         out.hess[1][0] -= hess;
     }
+    hess[(0, 0)]
 }
 
 /// Where elements add their forces, `K v` and stiffness: the global arrays, shared by
@@ -538,6 +549,7 @@ mod tests {
         model.set_seam_pull(SeamPull {
             stiffness: 50.0,
             reach: 0.05,
+            damping: 0.0,
         });
         let mut rng = StdRng::seed_from_u64(7);
         let x = mesh
@@ -558,6 +570,7 @@ mod tests {
         let pull = SeamPull {
             stiffness: 30.0,
             reach: 0.04,
+            damping: 0.0,
         };
         // Gaps inside and beyond the reach.
         for (gap, exact) in [
@@ -746,6 +759,49 @@ mod tests {
         for (a, b) in kv.iter().zip(&hv) {
             assert!((a / (1.0 + fab.damping) - b).norm() <= 1e-10 * scale);
         }
+    }
+
+    #[test]
+    fn the_seam_dashpot_resists_each_pairs_relative_velocity() {
+        let (_, mut model, mut matrix, x, v) = setup();
+        let n = x.len();
+        let zero = Vec3::zeros();
+        let h = 0.01;
+        let mut run = |model: &mut ForceModel| {
+            matrix.blocks_mut().iter_mut().for_each(|b| *b = Mat3::zeros());
+            let (mut f, mut hv) = (vec![zero; n], vec![zero; n]);
+            let target = StiffnessTarget {
+                matrix: &mut matrix,
+                h,
+            };
+            model.evaluate(&x, &v, &zero, &zero, &mut f, &mut hv, Some(target), false);
+            (f, matrix.to_dense())
+        };
+        let (f0, m0) = run(&mut model);
+        let c = 0.4;
+        model.set_seam_pull(SeamPull {
+            damping: c,
+            ..model.seam_pull()
+        });
+        let (f1, m1) = run(&mut model);
+        // Force: -c (v_a - v_b) on a, the opposite on b, pair by pair.
+        let mut expected = vec![zero; n];
+        let mut blocks = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
+        for [a, b] in SEAMS {
+            let df = -c * (v[a] - v[b]);
+            expected[a] += df;
+            expected[b] -= df;
+            for (i, j, sign) in [(a, a, 1.0), (b, b, 1.0), (a, b, -1.0), (b, a, -1.0)] {
+                for d in 0..3 {
+                    blocks[(3 * i + d, 3 * j + d)] += sign * h * c;
+                }
+            }
+        }
+        for i in 0..n {
+            assert!((f1[i] - f0[i] - expected[i]).norm() < 1e-12, "particle {i}");
+        }
+        // Matrix: h c times the pair's identity blocks (the damping part of h^2 + h beta).
+        assert!((m1 - m0 - blocks).amax() < 1e-12);
     }
 
     #[test]

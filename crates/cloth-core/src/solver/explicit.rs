@@ -9,7 +9,7 @@ impl Simulation {
     /// prescribed velocity in both.
     pub(super) fn explicit_step(&mut self, h: f64, symplectic: bool) -> Result<StepStats, String> {
         let start = Instant::now();
-        let potential = self.evaluate(false);
+        let potential = self.evaluate(h, false);
         let assembly_seconds = start.elapsed().as_secs_f64();
         let (masses, ws) = (self.model.masses(), &mut self.ws);
         for i in 0..self.x.len() {

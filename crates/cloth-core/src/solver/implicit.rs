@@ -14,20 +14,19 @@ impl Simulation {
     /// Returns the potential energy. The step itself calls this; it is public for
     /// diagnostics and benchmarks.
     pub fn assemble_system(&mut self) -> f64 {
-        self.evaluate(true)
+        self.evaluate(self.settings.time_step, true)
     }
 
     /// The forces on every particle at the current state (elastic, damping, gravity, drag).
     pub fn forces(&mut self) -> &[Vec3] {
-        self.evaluate(false);
+        self.evaluate(self.settings.time_step, false);
         &self.ws.force
     }
 
-    /// Forces (and `K v`) into the workspace, and with `with_stiffness` the system matrix;
-    /// returns the potential energy.
-    pub(super) fn evaluate(&mut self, with_stiffness: bool) -> f64 {
+    /// Forces (and `K v`) into the workspace, and with `with_stiffness` the system matrix
+    /// of a step of length `h`; returns the potential energy.
+    pub(super) fn evaluate(&mut self, h: f64, with_stiffness: bool) -> f64 {
         let s = &self.settings;
-        let h = s.time_step;
         let target = if with_stiffness {
             let model = &self.model;
             self.matrix.reset(s.parallel, |i| {
@@ -85,7 +84,7 @@ impl Simulation {
     /// median of 27 rather than 36 CG iterations a step for the sheet on the sphere).
     pub(super) fn implicit_step(&mut self, h: f64, velocity_accuracy: f64) -> Result<StepStats, String> {
         let start = Instant::now();
-        let potential = self.assemble_system();
+        let potential = self.evaluate(h, true);
         let assembly_seconds = start.elapsed().as_secs_f64();
 
         let start = Instant::now();

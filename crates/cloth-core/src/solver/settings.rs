@@ -36,6 +36,10 @@ pub struct SolverSettings {
     pub max_kinetic_energy: f64,
     /// Use rayon for assembly and the matrix-vector product.
     pub parallel: bool,
+    /// A step that diverges, whose solve fails or does not converge, or whose impact
+    /// passes go over their budget is taken again in halves, and those in halves, up to
+    /// this many times (down to `time_step / 2^max_halvings`); only then does it fail.
+    pub max_halvings: u32,
     /// The cloth's collision with itself (on by default). Not part of a scene's
     /// `[solver]` table: a scene sets it once for all its stages, in `[self_collision]`.
     #[serde(skip)]
@@ -53,6 +57,7 @@ impl Default for SolverSettings {
             max_speed: 100.0,
             max_kinetic_energy: f64::INFINITY,
             parallel: true,
+            max_halvings: 6,
             self_collision: SelfCollision::default(),
         }
     }
@@ -82,6 +87,12 @@ impl SolverSettings {
         )?;
         let v = self.max_speed;
         ParamError::check(v > 0.0, "max_speed", v, "a positive speed limit in m/s")?;
+        ParamError::check(
+            self.max_halvings <= 20,
+            "max_halvings",
+            self.max_halvings as f64,
+            "at most 20 halvings of the time step",
+        )?;
         let e = self.max_kinetic_energy;
         ParamError::check(e > 0.0, "max_kinetic_energy", e, "a positive energy limit in J")?;
         for (name, vector) in [("gravity", &self.gravity), ("wind", &self.wind)] {

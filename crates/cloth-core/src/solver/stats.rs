@@ -55,4 +55,42 @@ pub struct StepStats {
     pub self_unresolved: usize,
     /// Wall time finding the cloth's contacts with itself and resolving its impacts, s.
     pub self_collision_seconds: f64,
+    /// Substeps the step was taken in (1 at the full time step).
+    pub substeps: u32,
+    /// Substeps undone and taken again at half the length (diverged, solve failed or
+    /// unconverged, impact passes over budget).
+    pub retries: u32,
+    /// The shortest substep taken, s.
+    pub smallest_substep: f64,
+}
+
+impl StepStats {
+    /// Adds a substep's work and counts to the step's; the state figures (speed, energy,
+    /// residual) become the substep's, the last.
+    pub(crate) fn add_substep(&mut self, s: &StepStats) {
+        let first = self.substeps == 0;
+        self.substeps += 1;
+        self.cg_iterations += s.cg_iterations;
+        self.cg_residual = s.cg_residual;
+        self.cg_converged &= s.cg_converged;
+        self.assembly_seconds += s.assembly_seconds;
+        self.solve_seconds += s.solve_seconds;
+        self.max_speed = s.max_speed;
+        self.kinetic_energy = s.kinetic_energy;
+        if first {
+            self.potential_energy = s.potential_energy;
+        }
+        self.contacts = self.contacts.max(s.contacts);
+        self.contact_corrections += s.contact_corrections;
+        self.crossings += s.crossings;
+        self.feature_contacts = self.feature_contacts.max(s.feature_contacts);
+        self.feature_corrections += s.feature_corrections;
+        self.contact_seconds += s.contact_seconds;
+        self.self_contacts = self.self_contacts.max(s.self_contacts);
+        self.self_impacts += s.self_impacts;
+        self.self_zone_particles += s.self_zone_particles;
+        self.self_frozen += s.self_frozen;
+        self.self_unresolved += s.self_unresolved;
+        self.self_collision_seconds += s.self_collision_seconds;
+    }
 }

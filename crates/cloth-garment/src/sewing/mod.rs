@@ -22,6 +22,20 @@ pub struct SewingReport {
     pub max_gap: f64,
     /// The pull per seam pair at full strength, N.
     pub pull: f64,
+    /// Each time the seams stalled, and how the pull was raised to close them.
+    pub stalls: Vec<SeamStall>,
+}
+
+/// Seams that stopped closing: the widest then, and what was done.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SeamStall {
+    /// The step at which the stall was seen.
+    pub step: u64,
+    /// The seam with the widest gap then, and the gap, m.
+    pub seam: String,
+    pub gap: f64,
+    /// The pull from then on, over its full strength.
+    pub pull_factor: f64,
 }
 
 /// The garment sewn: its welded mesh at the positions where the seams closed.
@@ -109,6 +123,7 @@ pub fn sew(
     let (mut seam, mut gap) = garment.widest_gap(sim.positions());
     let mut steps = 0;
     let (mut boost, mut stall) = (1.0f64, Stall::new(settings));
+    let mut stalls = Vec::new();
     while gap >= settings.gap_tolerance {
         if steps == settings.max_steps {
             return Err(GarmentError::NotSewn {
@@ -121,11 +136,18 @@ pub fn sew(
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
         if ramp >= 1.0 && stall.stalled(gap, steps) {
             boost = (2.0 * boost).min(MAX_BOOST);
+            stalls.push(SeamStall {
+                step: steps,
+                seam: garment.seams[seam].name.clone(),
+                gap,
+                pull_factor: boost,
+            });
         }
         let force = pull * boost * ramp.max(1e-3);
         sim.set_seam_pull(SeamPull {
             stiffness: force / settings.reach,
             reach: settings.reach,
+            damping: force / settings.closing_speed,
         })?;
         let stats = sim.step().map_err(|source| match source {
             SimError::Interrupted { .. } => GarmentError::Stopped {
@@ -158,6 +180,7 @@ pub fn sew(
             cg_iterations: cg,
             max_gap: gap,
             pull,
+            stalls,
         },
         bending_calibration: sim.bending_calibration().to_vec(),
     })

@@ -1,0 +1,93 @@
+//! Steps that fail are taken again in shorter substeps: a run on valid input does not end
+//! for numerical reasons above the floor of `time_step / 2^max_halvings`.
+
+use cloth_core::{
+    DivergenceReason, Fabric, GridBuilder, Pin, SimError, Simulation, SimulationBuilder, SolverSettings, Vec3,
+};
+
+/// A 20 x 20 sheet hanging from two corners, its implicit solves cut at `iterations`.
+fn hanging_sheet(iterations: usize, max_halvings: u32) -> Simulation {
+    let mesh = GridBuilder::new(20, 20)
+        .size(0.5, 0.5)
+        .axes(Vec3::x(), -Vec3::z())
+        .build()
+        .unwrap();
+    let mut settings = SolverSettings {
+        time_step: 1.0 / 30.0,
+        max_halvings,
+        parallel: false,
+        ..SolverSettings::default()
+    };
+    settings.pcg.max_iterations = iterations;
+    SimulationBuilder::new(mesh, Fabric::cotton_like())
+        .settings(settings)
+        .pins([Pin::fixed(0), Pin::fixed(19)])
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn a_solve_that_does_not_converge_is_taken_again_in_substeps() {
+    // The whole step's system is too stiff to solve in so few iterations; a shorter
+    // step's, nearer the mass matrix, is not.
+    let iterations = 12;
+    let mut fixed = hanging_sheet(iterations, 0);
+    let unconverged = (0..30).filter(|_| !fixed.step().unwrap().cg_converged).count();
+    assert!(unconverged > 0);
+
+    let mut adaptive = hanging_sheet(iterations, 6);
+    let (mut retries, mut most, mut last) = (0, 0, None);
+    for k in 1..=90u64 {
+        let stats = adaptive.step().unwrap_or_else(|e| panic!("step {k}: {e}"));
+        assert!(stats.cg_converged, "step {k}");
+        assert_eq!(stats.step, k);
+        retries += stats.retries;
+        most = most.max(stats.substeps);
+        last = Some(stats);
+    }
+    assert!(retries > 0 && most > 1, "retries {retries}, most substeps {most}");
+    // Whole steps of h, however they were cut.
+    assert!((adaptive.time() - 3.0).abs() < 1e-12, "{}", adaptive.time());
+    // Swinging slower, the sheet is back to longer substeps.
+    let last = last.unwrap();
+    assert!(last.substeps < most, "{} of {most}", last.substeps);
+}
+
+#[test]
+fn below_the_floor_the_step_fails_and_keeps_the_last_whole_step() {
+    // Free fall reaches the speed limit whatever the step: every substep fails.
+    let mesh = GridBuilder::new(6, 6).size(0.2, 0.2).build().unwrap();
+    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
+        .settings(SolverSettings {
+            max_speed: 0.5,
+            max_halvings: 3,
+            parallel: false,
+            ..SolverSettings::default()
+        })
+        .build()
+        .unwrap();
+    let mut last = None;
+    let error = loop {
+        let before = (sim.positions().to_vec(), sim.time(), sim.step_count());
+        match sim.step() {
+            Ok(_) => last = Some(before),
+            Err(e) => break (e, before),
+        }
+        assert!(sim.step_count() < 100, "never reached the limit");
+    };
+    let (error, before) = error;
+    assert!(last.is_some());
+    match error {
+        SimError::Diverged {
+            step,
+            last_good,
+            reason: DivergenceReason::SpeedLimit { .. },
+        } => {
+            assert_eq!((step, last_good), (before.2 + 1, before.2));
+        }
+        other => panic!("{other}"),
+    }
+    assert_eq!(sim.positions(), &before.0[..]);
+    assert_eq!(sim.time(), before.1);
+    assert_eq!(sim.step_count(), before.2);
+}
