@@ -147,7 +147,7 @@ pub fn sew(
         sim.set_seam_pull(SeamPull {
             stiffness: force / settings.reach,
             reach: settings.reach,
-            damping: force / settings.closing_speed,
+            damping: settings.closing_speed.map_or(0.0, |v| force / v),
         })?;
         let stats = sim.step().map_err(|source| match source {
             SimError::Interrupted { .. } => GarmentError::Stopped {
