@@ -20,6 +20,10 @@ const BAND: f64 = 0.5;
 /// would be an infinite drag; ten holds the cloth against anything it meets.
 const MAX_FRICTION: f64 = 10.0;
 
+/// The least cosine between a cloth triangle's normal and a feature's for the triangle to
+/// count as lying over the feature (60 degrees).
+const MIN_FACING: f64 = 0.5;
+
 /// A triangle is skipped unless some vertex is within its longest edge plus the largest
 /// contact thickness of a body (by the particles' gap bounds).
 fn near_body(tri: &[usize; 3], p: &[Vec3; 3], gap_bound: &impl Fn(usize) -> f64, max_thickness: f64) -> bool {
@@ -258,8 +262,12 @@ pub(crate) fn feature_under_triangle(p: &[Vec3; 3], f: &SharpFeature) -> Option<
     if normal.dot(&f.normal) < 0.0 {
         normal = -normal;
     }
-    // A triangle edge-on to the feature's normal says nothing about which side it is on.
-    if normal.dot(&f.normal) < 0.05 {
+    // A triangle steeper than this to the feature's normal is not lying on it: which side
+    // it is on is the particles' contacts' to say, and pushed out along its own normal it
+    // would go mostly sideways. Near edge-on (down to 0.05), a hood crumpled against an
+    // ear was pushed by one feature after another, 1,546 pushes in a step and 13,552 in
+    // the next, until the cloth left at 100 m/s.
+    if normal.dot(&f.normal) < MIN_FACING {
         return None;
     }
     let (d00, d01, d11) = (e1.dot(&e1), e1.dot(&e2), e2.dot(&e2));
@@ -396,6 +404,25 @@ mod tests {
             &feature(Vec3::new(0.8, 0.8, 0.0), Vec3::new(0.8, 0.8, 0.0))
         )
         .is_none());
+    }
+
+    #[test]
+    fn a_triangle_steeper_than_sixty_degrees_to_the_feature_is_not_over_it() {
+        // The triangle turned about its x edge by `tilt` from facing the feature's normal
+        // (z), a corner under its middle.
+        let tilted = |tilt: f64| {
+            let up = Vec3::new(0.0, tilt.cos(), tilt.sin());
+            [Vec3::zeros(), Vec3::x(), up].map(|p| p + Vec3::new(0.0, 0.0, 0.1))
+        };
+        let under = |tilt: f64| {
+            let p = tilted(tilt);
+            let centre = (p[0] + p[1] + p[2]) / 3.0 - 0.05 * Vec3::z();
+            feature_under_triangle_deepest(&p, &feature(centre, centre))
+        };
+        assert!(under(50f64.to_radians()).is_some());
+        // cos 70 degrees = 0.34 < 0.5: pushed along its own normal, the triangle would go
+        // mostly sideways.
+        assert!(under(70f64.to_radians()).is_none());
     }
 
     #[test]
