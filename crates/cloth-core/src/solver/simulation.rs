@@ -497,7 +497,9 @@ impl Simulation {
         Ok(total)
     }
 
-    /// One substep of length `h`; `at_floor` lifts the impact passes' budget.
+    /// One substep of length `h`, committed only if it passes every check. Above the
+    /// floor an unconverged solve and impact passes over their budget fail it; `at_floor`
+    /// lifts both.
     fn try_step(&mut self, h: f64, velocity_accuracy: f64, at_floor: bool) -> Result<StepStats, SimError> {
         let interrupted = SimError::Interrupted {
             step: self.steps + 1,
