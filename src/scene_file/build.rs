@@ -112,7 +112,7 @@ impl SceneFile {
                     Pattern::from_toml_path(&path)?
                 };
                 warnings.extend(pattern.gathers().into_iter().map(SceneWarning::Gather));
-                let garment = GarmentBuilder::new(pattern)
+                let mut garment = GarmentBuilder::new(pattern)
                     .edge_length(*edge_length)
                     .max_triangles(self.max_triangles)
                     .file(path.display().to_string())
@@ -126,7 +126,7 @@ impl SceneFile {
                         })?;
                 warnings.extend(
                     garment
-                        .placement_warnings(&bodies)
+                        .move_out_of(&bodies)
                         .into_iter()
                         .map(SceneWarning::Placement),
                 );

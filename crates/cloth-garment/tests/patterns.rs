@@ -305,6 +305,41 @@ fn a_panel_starting_inside_the_body_is_warned_with_the_fix() {
 }
 
 #[test]
+fn a_panel_starting_inside_the_body_is_moved_out_whole() {
+    let mannequin = Mannequin::new(&Measurements::default()).unwrap();
+    let bodies = Bodies::new(mannequin.bodies());
+    let mut pushed = Pattern::from_toml_str(SKIRT, "skirt.toml").unwrap();
+    pushed.panels[0].placement.translation.y += 0.12;
+    let mut garment = GarmentBuilder::new(pushed).edge_length(0.03).build().unwrap();
+    let before = garment.mesh.positions().to_vec();
+    let moved = garment.move_out_of(&bodies);
+    assert_eq!(moved.len(), 1);
+    let w = &moved[0];
+    let distance = w.moved.expect("cleared");
+    assert!(distance > w.depth, "{w:?}");
+    assert!(w.to_string().contains("moved"), "{w}");
+    // Nothing inside now, and the front panel a clearance off the body.
+    assert!(garment.placement_warnings(&bodies).is_empty());
+    let (deepest, _) = bodies.deepest_inside(0.0, garment.mesh.positions());
+    assert_eq!(deepest, 0.0);
+    // Moved whole: every particle by the same vector, the front's along its outward
+    // normal, the back's not at all.
+    let shifts: Vec<cloth_core::Vec3> = garment
+        .mesh
+        .positions()
+        .iter()
+        .zip(&before)
+        .map(|(a, b)| a - b)
+        .collect();
+    let front = shifts.iter().find(|d| d.norm() > 0.0).copied().unwrap();
+    assert!((front - w.outward * distance).norm() < 1e-12, "{front}");
+    assert!(shifts
+        .iter()
+        .all(|d| d.norm() == 0.0 || (d - front).norm() < 1e-12));
+    assert!(shifts.iter().any(|d| d.norm() == 0.0));
+}
+
+#[test]
 fn tight_curves_are_sampled_finer_and_the_mesh_graded_from_them() {
     // A 40 x 30 cm panel with a notch of 3 cm radius in its top edge, meshed at 5 cm.
     let text = r#"

@@ -199,6 +199,13 @@ impl ClothMesh {
         self
     }
 
+    /// Moves the given vertices by `by` (a panel placed elsewhere before it is sewn); the
+    /// rest shape is untouched.
+    pub fn translate_vertices(&mut self, vertices: &[usize], by: Vec3) {
+        for &i in vertices {
+            self.positions[i] += by;
+        }
+    }
     pub fn positions(&self) -> &[Vec3] {
         &self.positions
     }
