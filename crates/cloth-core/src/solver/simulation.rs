@@ -440,38 +440,29 @@ impl Simulation {
             let length = (ticks >> level).min(ticks - done);
             let dt = h * length as f64 / ticks as f64;
             let at_floor = level == floor;
-            let outcome = self.try_step(dt, velocity_accuracy, at_floor);
-            if outcome.is_err() {
-                // The warm start and the contact states were of the rejected substep.
-                self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
-                if let Some(c) = &mut self.contacts {
-                    c.particles
-                        .refresh(c.collider.as_ref(), self.time, &self.x, self.settings.parallel);
-                }
-            }
-            let stats = match outcome {
+            let stats = match self.try_step(dt, velocity_accuracy, at_floor) {
                 Ok(stats) => stats,
-                Err(SimError::Diverged { .. } | SimError::Solver { .. }) if !at_floor => {
+                Err(e) => {
+                    let retry = !at_floor && matches!(e, SimError::Diverged { .. } | SimError::Solver { .. });
+                    if !retry && done > 0 {
+                        // Failing, the step keeps the last whole step's state.
+                        self.x.copy_from_slice(&self.ws.x_start);
+                        self.v.copy_from_slice(&self.ws.v_start);
+                        self.time = start_time;
+                    }
+                    // The warm start and the contact states were of the rejected substep.
+                    self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
+                    if let Some(c) = &mut self.contacts {
+                        c.particles
+                            .refresh(c.collider.as_ref(), self.time, &self.x, self.settings.parallel);
+                    }
+                    if !retry {
+                        return Err(e);
+                    }
                     total.retries += 1;
                     self.level = level + 1;
                     self.easy = 0;
                     continue;
-                }
-                Err(e) => {
-                    if done > 0 {
-                        self.x.copy_from_slice(&self.ws.x_start);
-                        self.v.copy_from_slice(&self.ws.v_start);
-                        self.time = start_time;
-                        if let Some(c) = &mut self.contacts {
-                            c.particles.refresh(
-                                c.collider.as_ref(),
-                                self.time,
-                                &self.x,
-                                self.settings.parallel,
-                            );
-                        }
-                    }
-                    return Err(e);
                 }
             };
             total.add_substep(&stats);
@@ -579,8 +570,7 @@ impl Simulation {
 
         let masses = self.model.masses();
         let mut max_speed: f64 = 0.0;
-        let mut max_disp: f64 = 0.0;
-        for (i, ((xn, vn), x0)) in self.ws.x_new.iter().zip(&self.ws.v_new).zip(&self.x).enumerate() {
+        for (i, (xn, vn)) in self.ws.x_new.iter().zip(&self.ws.v_new).enumerate() {
             let speed = vn.norm();
             let bad = if !(xn.iter().all(|c| c.is_finite()) && speed.is_finite()) {
                 Some(DivergenceReason::NonFinite { particle: i })
@@ -601,7 +591,6 @@ impl Simulation {
                 });
             }
             max_speed = max_speed.max(speed);
-            max_disp = max_disp.max((xn - x0).norm());
         }
         let ke = kinetic_energy(masses, &self.ws.v_new);
         if ke > self.settings.max_kinetic_energy {
@@ -618,7 +607,6 @@ impl Simulation {
         std::mem::swap(&mut self.v, &mut self.ws.v_new);
         self.time += h;
         stats.max_speed = max_speed;
-        stats.max_displacement = max_disp;
         stats.kinetic_energy = ke;
         Ok(stats)
     }

@@ -23,82 +23,48 @@ pub struct PlacementWarning {
 
 impl std::fmt::Display for PlacementWarning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if let Some(moved) = self.moved {
-            return write!(
-                f,
-                "panel '{}' started {:.1} cm inside body '{}' (at {:.3}, {:.3}, {:.3} m): moved {:.1} cm \
-                 along ({:.2}, {:.2}, {:.2}) before sewing",
-                self.panel,
-                100.0 * self.depth,
-                self.body,
-                self.point.x,
-                self.point.y,
-                self.point.z,
-                100.0 * moved,
-                self.outward.x,
-                self.outward.y,
-                self.outward.z
-            );
-        }
-        let clear = 100.0 * (self.depth + 0.01);
+        let (tense, o) = (
+            if self.moved.is_some() { "started" } else { "starts" },
+            &self.outward,
+        );
         write!(
             f,
-            "panel '{}' starts {:.1} cm inside body '{}' (at {:.3}, {:.3}, {:.3} m): move it {:.1} cm \
-             along ({:.2}, {:.2}, {:.2}) in its placement's translation, or increase its wrap radius",
+            "panel '{}' {tense} {:.1} cm inside body '{}' (at {:.3}, {:.3}, {:.3} m): ",
             self.panel,
             100.0 * self.depth,
             self.body,
             self.point.x,
             self.point.y,
             self.point.z,
-            clear,
-            self.outward.x,
-            self.outward.y,
-            self.outward.z
-        )
+        )?;
+        match self.moved {
+            Some(moved) => write!(
+                f,
+                "moved {:.1} cm along ({:.2}, {:.2}, {:.2}) before sewing",
+                100.0 * moved,
+                o.x,
+                o.y,
+                o.z
+            ),
+            None => write!(
+                f,
+                "move it {:.1} cm along ({:.2}, {:.2}, {:.2}) in its placement's translation, or \
+                 increase its wrap radius",
+                100.0 * (self.depth + 0.01),
+                o.x,
+                o.y,
+                o.z
+            ),
+        }
     }
 }
 
 impl Garment {
     /// One warning per panel with vertices inside a body at its start (time 0).
     pub fn placement_warnings(&self, bodies: &Bodies) -> Vec<PlacementWarning> {
-        let x = self.mesh.positions();
-        let mut deepest: Vec<Option<(f64, usize, usize)>> = vec![None; self.panel_names.len()];
-        let mut panel_of = vec![usize::MAX; x.len()];
-        for (t, tri) in self.mesh.triangles().iter().enumerate() {
-            tri.iter().for_each(|&i| panel_of[i] = self.triangle_panel[t]);
-        }
-        // Panels face out of the garment (+z of their frames), and their triangles are
-        // wound counter-clockwise seen from the front: the area-weighted normal points out.
-        let mut facing = vec![Vec3::zeros(); self.panel_names.len()];
-        for (t, tri) in self.mesh.triangles().iter().enumerate() {
-            let [a, b, c] = tri.map(|i| x[i]);
-            facing[self.triangle_panel[t]] += (b - a).cross(&(c - a));
-        }
-        for (i, p) in x.iter().enumerate() {
-            if let Some((d, body)) = bodies.signed_distance(0.0, p) {
-                let slot = &mut deepest[panel_of[i]];
-                if d < 0.0 && slot.is_none_or(|(depth, _, _)| -d > depth) {
-                    *slot = Some((-d, i, body));
-                }
-            }
-        }
-        deepest
-            .iter()
-            .enumerate()
-            .filter_map(|(panel, found)| {
-                let (depth, i, body) = (*found)?;
-                let b = &bodies.bodies()[body];
-                let outward = facing[panel].try_normalize(1e-12).unwrap_or(Vec3::x());
-                Some(PlacementWarning {
-                    panel: self.panel_names[panel].clone(),
-                    body: b.name().to_string(),
-                    depth,
-                    point: x[i],
-                    outward,
-                    moved: None,
-                })
-            })
+        let (members, facing) = (self.panel_members(), self.panel_facing());
+        (0..self.panel_names.len())
+            .filter_map(|panel| self.placement_warning(panel, &members[panel], facing[panel], bodies))
             .collect()
     }
 
@@ -110,8 +76,41 @@ impl Garment {
     /// panel that started inside, saying how far it moved; a panel that moving does not
     /// clear within [`MAX_MOVE`] stays where it was, its warning with the fix as before.
     pub fn move_out_of(&mut self, bodies: &Bodies) -> Vec<PlacementWarning> {
-        let mut warnings = self.placement_warnings(bodies);
-        let mut members: Vec<Vec<usize>> = vec![Vec::new(); self.panel_names.len()];
+        let (members, facing) = (self.panel_members(), self.panel_facing());
+        let mut warnings = Vec::new();
+        for (panel, ids) in members.iter().enumerate() {
+            let Some(mut w) = self.placement_warning(panel, ids, facing[panel], bodies) else {
+                continue;
+            };
+            let clearance = |x: &[Vec3]| {
+                ids.iter()
+                    .filter_map(|&i| bodies.signed_distance(0.0, &x[i]).map(|(d, _)| d))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let mut moved = 0.0;
+            // A panel crossing the body at a slant clears it a little less than each move.
+            for _ in 0..8 {
+                let now = clearance(self.mesh.positions());
+                if now >= CLEARANCE || moved > MAX_MOVE {
+                    break;
+                }
+                let step = (CLEARANCE - now).max(0.25 * CLEARANCE);
+                self.mesh.translate_vertices(ids, w.outward * step);
+                moved += step;
+            }
+            if clearance(self.mesh.positions()) >= CLEARANCE {
+                w.moved = Some(moved);
+            } else {
+                self.mesh.translate_vertices(ids, -w.outward * moved);
+            }
+            warnings.push(w);
+        }
+        warnings
+    }
+
+    /// The particles of each panel (before sewing, each is of one panel).
+    fn panel_members(&self) -> Vec<Vec<usize>> {
+        let mut members = vec![Vec::new(); self.panel_names.len()];
         let mut seen = vec![false; self.mesh.vertex_count()];
         for (t, tri) in self.mesh.triangles().iter().enumerate() {
             for &i in tri {
@@ -120,36 +119,46 @@ impl Garment {
                 }
             }
         }
-        for w in &mut warnings {
-            let Some(panel) = self.panel_names.iter().position(|p| *p == w.panel) else {
-                continue;
-            };
-            let ids = &members[panel];
-            let deepest = |x: &[Vec3]| {
-                ids.iter()
-                    .filter_map(|&i| bodies.signed_distance(0.0, &x[i]).map(|(d, _)| d))
-                    .fold(f64::INFINITY, f64::min)
-            };
-            let mut moved = 0.0;
-            let mut shift = Vec3::zeros();
-            // A panel crossing the body at a slant clears it a little less than each move.
-            for _ in 0..8 {
-                let clearance = deepest(self.mesh.positions());
-                if clearance >= CLEARANCE || moved > MAX_MOVE {
-                    break;
-                }
-                let step = (CLEARANCE - clearance).max(0.25 * CLEARANCE);
-                self.mesh.translate_vertices(ids, w.outward * step);
-                shift += w.outward * step;
-                moved += step;
-            }
-            if deepest(self.mesh.positions()) >= CLEARANCE {
-                w.moved = Some(moved);
-            } else {
-                self.mesh.translate_vertices(ids, -shift);
-            }
+        members
+    }
+
+    /// Each panel's outward unit normal. Panels face out of the garment (+z of their
+    /// frames), and their triangles are wound counter-clockwise seen from the front: the
+    /// area-weighted normal points out.
+    fn panel_facing(&self) -> Vec<Vec3> {
+        let x = self.mesh.positions();
+        let mut facing = vec![Vec3::zeros(); self.panel_names.len()];
+        for (t, tri) in self.mesh.triangles().iter().enumerate() {
+            let [a, b, c] = tri.map(|i| x[i]);
+            facing[self.triangle_panel[t]] += (b - a).cross(&(c - a));
         }
-        warnings
+        facing
+            .iter()
+            .map(|n| n.try_normalize(1e-12).unwrap_or(Vec3::x()))
+            .collect()
+    }
+
+    /// The warning for `panel` (its particles `ids`), if any of it is inside a body.
+    fn placement_warning(
+        &self,
+        panel: usize,
+        ids: &[usize],
+        outward: Vec3,
+        bodies: &Bodies,
+    ) -> Option<PlacementWarning> {
+        let x = self.mesh.positions();
+        let (d, i, body) = ids
+            .iter()
+            .filter_map(|&i| bodies.signed_distance(0.0, &x[i]).map(|(d, body)| (d, i, body)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))?;
+        (d < 0.0).then(|| PlacementWarning {
+            panel: self.panel_names[panel].clone(),
+            body: bodies.bodies()[body].name().to_string(),
+            depth: -d,
+            point: x[i],
+            outward,
+            moved: None,
+        })
     }
 }
 
