@@ -18,6 +18,10 @@ const EDGE_LENGTH: f64 = 0.02;
 struct Dressed {
     sewn: Sewn,
     draped: Draped,
+    bodies: Arc<Bodies>,
+    /// The panel of each triangle, and the panels' names.
+    triangle_panel: Vec<usize>,
+    panel_names: Vec<String>,
     landmarks: Landmarks,
     depth_inside: f64,
     strain: StrainReport,
@@ -101,6 +105,9 @@ fn dress(pattern: &str, body: Body) -> Dressed {
     Dressed {
         sewn,
         draped,
+        bodies,
+        triangle_panel: garment.triangle_panel.clone(),
+        panel_names: garment.panel_names.clone(),
         landmarks,
         depth_inside,
         strain,
@@ -111,19 +118,64 @@ fn dress(pattern: &str, body: Body) -> Dressed {
 
 /// What every garment must show at rest.
 fn check_at_rest(d: &Dressed) {
-    assert!(d.sewn.report.max_gap < 1e-3);
-    assert_eq!(d.draped.outcome.reason, StopReason::AtRest);
-    assert_eq!(d.depth_inside, 0.0, "a particle is inside the body");
-    assert_eq!(d.self_intersections, 0, "the garment passes through itself");
-    assert_eq!(d.body_intersections, 0, "the garment passes through the body");
+    check_rest_state(d);
     assert!(
         d.strain.max_warp < 3.0 && d.strain.max_weft < 3.0,
         "{:?}",
         (d.strain.max_warp, d.strain.max_weft)
     );
+}
+
+/// What every garment must show at rest, its stretch aside.
+fn check_rest_state(d: &Dressed) {
+    assert!(d.sewn.report.max_gap < 1e-3);
+    assert_eq!(d.draped.outcome.reason, StopReason::AtRest);
+    assert_eq!(d.depth_inside, 0.0, "a particle is inside the body");
+    assert_eq!(d.self_intersections, 0, "the garment passes through itself");
+    assert_eq!(d.body_intersections, 0, "the garment passes through the body");
     let x = d.draped.simulation.positions();
     let lowest = x.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
     assert!(lowest > 0.0, "the garment touches the floor");
+}
+
+/// The perimeter of the convex hull of the bodies' section by the plane at height `z`, m.
+fn section_hull_perimeter(bodies: &Bodies, z: f64) -> f64 {
+    let mut points: Vec<(f64, f64)> = Vec::new();
+    for body in bodies.bodies() {
+        let surface = body.surface_at(0.0);
+        let v = surface.vertices();
+        for t in surface.triangles() {
+            let p = t.map(|i| v[i as usize]);
+            for k in 0..3 {
+                let (a, b) = (p[k], p[(k + 1) % 3]);
+                if (a.z - z) * (b.z - z) < 0.0 {
+                    let s = (z - a.z) / (b.z - a.z);
+                    points.push((a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)));
+                }
+            }
+        }
+    }
+    // Andrew's monotone chain.
+    points.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let cross =
+        |o: (f64, f64), a: (f64, f64), b: (f64, f64)| (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0);
+    let mut hull: Vec<(f64, f64)> = Vec::new();
+    for pass in [points.clone(), points.iter().rev().copied().collect()] {
+        let start = hull.len();
+        for p in pass {
+            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    (0..hull.len())
+        .map(|k| {
+            let (a, b) = (hull[k], hull[(k + 1) % hull.len()]);
+            (a.0 - b.0).hypot(a.1 - b.1)
+        })
+        .sum()
 }
 
 fn centroid(x: &[Vec3]) -> Vec3 {
@@ -209,7 +261,52 @@ fn folds(x: &[Vec3], depth: f64) -> usize {
 #[test]
 fn a_skirt_gathered_two_to_one_into_its_waistband_sews_and_drapes_in_folds() {
     let d = dress("gathered_skirt.toml", Body::Generated(Measurements::default()));
-    check_at_rest(&d);
+    check_rest_state(&d);
+    // The gathered cloth takes no tension: the skirt's panels barely stretch.
+    let band = |t: usize| d.panel_names[d.triangle_panel[t]].starts_with("band");
+    let skirt_max = |strain: &[f64]| {
+        (0..strain.len())
+            .filter(|&t| !band(t))
+            .map(|t| strain[t])
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let (warp, weft) = (skirt_max(&d.strain.warp), skirt_max(&d.strain.weft));
+    println!("gathered skirt: panels' largest warp {warp:.2} %, weft {weft:.2} %");
+    assert!(warp < 3.0 && weft < 3.0, "{warp} {weft}");
+    // The band holds the skirt up by hugging the body, so its weft stretch is the fit of its
+    // 82 cm where it rests: the girth there (the convex hull of the body's section at the
+    // band's mid-height, grown by the band's distance from the body) over 82 cm, less one.
+    // Where the band comes to rest moves with how it was sewn (a few centimetres down the
+    // body, where the girth grows); this holds wherever that is.
+    let sim = &d.draped.simulation;
+    let x = sim.positions();
+    let band_triangles: Vec<usize> = (0..d.strain.weft.len()).filter(|&t| band(t)).collect();
+    let mut band_particles: Vec<usize> = band_triangles
+        .iter()
+        .flat_map(|&t| sim.mesh().triangles()[t])
+        .collect();
+    band_particles.sort_unstable();
+    band_particles.dedup();
+    let mean =
+        |f: &dyn Fn(usize) -> f64, ids: &[usize]| ids.iter().map(|&i| f(i)).sum::<f64>() / ids.len() as f64;
+    let height = mean(&|i| x[i].z, &band_particles);
+    let offset = mean(
+        &|i| d.bodies.signed_distance(sim.time(), &x[i]).expect("a body").0,
+        &band_particles,
+    );
+    let girth = section_hull_perimeter(&d.bodies, height) + std::f64::consts::TAU * offset;
+    let expected = 100.0 * (girth / 0.82 - 1.0);
+    let measured = mean(&|t| d.strain.weft[t], &band_triangles);
+    println!(
+        "gathered skirt: band at {height:.3} m, {:.1} mm off the body, weft {measured:.2} % (girth there {:.1} cm: {expected:.2} %), largest {:.2} %",
+        1e3 * offset,
+        100.0 * girth,
+        d.strain.max_weft
+    );
+    assert!(
+        (measured - expected).abs() < 0.5,
+        "band {measured} %, girth says {expected} %"
+    );
     let x = d.draped.simulation.positions();
     let l = &d.landmarks;
     // Held by the waist and hips, as the straight skirt is.

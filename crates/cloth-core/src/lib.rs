@@ -19,8 +19,11 @@ pub mod mesh;
 pub mod metrics;
 pub mod self_contact;
 pub mod solver;
+mod spatial;
 
-pub use contact::{count_body_intersections, Collider, ContactMode, Proximity, SharpFeature, SurfacePoint};
+pub use contact::{
+    count_body_intersections, Collider, ContactMode, PassThrough, Proximity, SharpFeature, SurfacePoint,
+};
 pub use error::{DivergenceReason, MeshError, ParamError, SimError};
 pub use fabric::{
     BendingLaw, BendingRigidity, Fabric, KesConversion, KesDirection, KesMeasurement, SourceCoefficients,
@@ -28,7 +31,9 @@ pub use fabric::{
 };
 pub use mesh::{ClothMesh, GridBuilder, GridDiagonals, GridShape};
 pub use metrics::{GridStretch, StrainReport};
-pub use self_contact::{closest_self_approach, count_self_intersections, Intersections, SelfCollision};
+pub use self_contact::{
+    closest_self_approach, count_self_intersections, Intersections, SelfCollision, Tangle,
+};
 pub use solver::{
     Constraint, ConstraintKind, Integrator, Interrupt, PcgSettings, Pin, PinMotion, RestCriteria,
     RestOutcome, SeamPull, Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,

@@ -6,7 +6,7 @@ mod particle_contacts;
 
 pub use collider::{Collider, Proximity, SharpFeature, SurfacePoint};
 pub(crate) use particle_contacts::ParticleContacts;
-pub use particle_contacts::{ContactMode, SLIP_SPEED};
+pub use particle_contacts::{ContactMode, PassThrough, SLIP_SPEED};
 
 use crate::mesh::ClothMesh;
 use crate::Vec3;
@@ -30,7 +30,7 @@ pub(crate) struct Contacts {
     pub collider: Arc<dyn Collider>,
     pub particles: ParticleContacts,
     /// Sharp features at the end of the current step, and those under cloth triangles.
-    features: Vec<SharpFeature>,
+    features: feature_contacts::FeatureSet,
     feature_hits: Vec<feature_contacts::FeatureContact>,
     /// Stiffness of the feature penalty, N/m.
     feature_stiffness: f64,
@@ -70,7 +70,7 @@ impl Contacts {
         Self {
             collider,
             particles: ParticleContacts::new(reach, cloth_friction),
-            features: Vec::with_capacity(64),
+            features: feature_contacts::FeatureSet::default(),
             feature_hits: Vec::new(),
             feature_stiffness,
             inv_mass,
@@ -79,14 +79,14 @@ impl Contacts {
 
     /// Finds the sharp features (at the step's end time `t1`) under cloth triangles at `x`.
     pub fn detect_features(&mut self, t1: f64, triangles: &[[usize; 3]], x: &[Vec3]) {
-        self.features.clear();
-        self.collider.sharp_features(t1, &mut self.features);
+        let collider = self.collider.as_ref();
+        self.features.update(|out| collider.sharp_features(t1, out));
         let particles = &self.particles;
         feature_contacts::detect_features(
-            &self.features,
+            &mut self.features,
             triangles,
             x,
-            |i| particles.gap_lower_bound(i),
+            |i| particles.feature_gap_bound(i),
             self.collider.max_thickness(),
             &particles.cloth_friction,
             &mut self.feature_hits,
@@ -141,13 +141,13 @@ impl Contacts {
             .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, parallel);
         let particles = &self.particles;
         let features = feature_contacts::resolve_features(
-            &self.features,
+            &mut self.features,
             triangles,
             x,
             x_new,
             v_new,
             &self.inv_mass,
-            |i| particles.gap_lower_bound(i),
+            |i| particles.feature_gap_bound(i),
             collider.max_thickness(),
         );
         ContactCounts {

@@ -61,6 +61,27 @@ pub(crate) struct ParticleState {
     /// `demand` is from a step of the present motion (not before the first step, nor
     /// after positions or velocities were set).
     pub demand_known: bool,
+    /// The particle is of a piece passing through the bodies, untouched by them (see
+    /// [`PassThrough`]).
+    pub passing: bool,
+    /// `passing` when the step began, for a step taken again.
+    passing_at_start: bool,
+    /// The particle ended the last step inside a body (kept for the particles whose piece
+    /// is passing through).
+    inside: bool,
+}
+
+/// A piece of cloth (a panel) placed through a thin part of a body (a hand, an arm), to be
+/// drawn out of it by the seams: held by the body, it would hang on it, pushed out to
+/// the nearest side; passed particle by particle, its particles outside the body would
+/// catch on the hand as the piece moves past it, and those the hand's section reaches as
+/// the piece moves would be thrown out of it when released. So the whole piece passes
+/// through the bodies, untouched by them, until it ends a step with none of its particles
+/// inside one; from then on the bodies hold it as any cloth.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct PassThrough {
+    /// Every particle of the piece.
+    pub members: Vec<usize>,
 }
 
 /// A contact constrained in the current step.
@@ -123,6 +144,8 @@ pub(crate) struct ParticleContacts {
     reach: f64,
     /// Each particle's fabric's Coulomb coefficient, for bodies that do not set their own.
     pub(super) cloth_friction: Vec<f64>,
+    /// The pieces passing through the bodies (done when their members no longer pass).
+    pass_through: Vec<PassThrough>,
 }
 
 impl ParticleContacts {
@@ -138,12 +161,53 @@ impl ParticleContacts {
                     released: false,
                     demand: Vec3::zeros(),
                     demand_known: false,
+                    passing: false,
+                    passing_at_start: false,
+                    inside: false,
                 };
                 n
             ],
+            pass_through: Vec::new(),
             active: Vec::with_capacity(n),
             reach,
             cloth_friction,
+        }
+    }
+
+    /// Lets the pieces `pieces` pass through the bodies (see [`PassThrough`]).
+    pub fn set_pass_through(&mut self, pieces: Vec<PassThrough>) {
+        for piece in &pieces {
+            for &i in &piece.members {
+                self.state[i].passing = true;
+                // Until the first step has looked.
+                self.state[i].inside = true;
+            }
+        }
+        self.pass_through = pieces;
+    }
+
+    /// Puts back which particles were passing when the step began (the step is taken
+    /// again).
+    pub fn rewind_passing(&mut self) {
+        self.state.iter_mut().for_each(|s| s.passing = s.passing_at_start);
+    }
+
+    /// The pieces still passing through the bodies.
+    pub fn passing(&self) -> impl Iterator<Item = &PassThrough> + '_ {
+        self.pass_through
+            .iter()
+            .filter(|p| p.members.first().is_some_and(|&i| self.state[i].passing))
+    }
+
+    /// Ends the passing of each piece with none of its particles inside a body.
+    fn finish_passing(&mut self) {
+        for piece in &self.pass_through {
+            let passing = piece.members.first().is_some_and(|&i| self.state[i].passing);
+            if passing && !piece.members.iter().any(|&i| self.state[i].inside) {
+                for &i in &piece.members {
+                    self.state[i].passing = false;
+                }
+            }
         }
     }
 
@@ -177,10 +241,15 @@ impl ParticleContacts {
     ) {
         self.active.clear();
         for (i, s) in self.state.iter_mut().enumerate() {
+            s.passing_at_start = s.passing;
             let Proximity::Near(p) = s.proximity else {
                 s.mode = ContactMode::Free;
                 continue;
             };
+            if s.passing {
+                s.mode = ContactMode::Free;
+                continue;
+            }
             let n = p.normal;
             let relative = v[i] - p.velocity;
             // In contact when inside the band, or about to cross into the layer within the
@@ -420,6 +489,13 @@ impl ParticleContacts {
             }
             let mut proximity = collider.sweep(t0, x0, t1, x1, start_bound, reach);
             let mut counts = SweepCounts::default();
+            if s.passing {
+                // Untouched; out once it ends the step clear of every body (in the contact
+                // layer at most, from where a later step's contact carries it out).
+                s.inside = matches!(&proximity, Proximity::Near(p) if p.distance < 0.0 || p.crossed);
+                s.proximity = proximity;
+                return counts;
+            }
             if let Proximity::Near(p) = &mut proximity {
                 if p.crossed || p.distance < 0.0 {
                     counts.corrected = 1;
@@ -440,7 +516,7 @@ impl ParticleContacts {
             corrected: a.corrected + b.corrected,
             crossings: a.crossings + b.crossings,
         };
-        if parallel {
+        let counts = if parallel {
             self.state
                 .par_iter_mut()
                 .zip(x)
@@ -458,7 +534,9 @@ impl ParticleContacts {
                 .zip(pinned)
                 .map(|(item, &p)| visit(item, p))
                 .fold(SweepCounts::default(), add)
-        }
+        };
+        self.finish_passing();
+        counts
     }
 
     /// Particle `i` was moved by up to `d` after its last query: what is known of its gap
@@ -473,5 +551,15 @@ impl ParticleContacts {
     /// A lower bound on each particle's distance beyond the nearest body's thickness.
     pub fn gap_lower_bound(&self, i: usize) -> f64 {
         self.state[i].proximity.gap_lower_bound()
+    }
+
+    /// As [`ParticleContacts::gap_lower_bound`] for sharp features, which leave the
+    /// triangles of particles passing through a body alone: infinite for those.
+    pub fn feature_gap_bound(&self, i: usize) -> f64 {
+        if self.state[i].passing {
+            f64::INFINITY
+        } else {
+            self.gap_lower_bound(i)
+        }
     }
 }

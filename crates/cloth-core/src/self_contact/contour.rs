@@ -7,8 +7,8 @@
 //! it (star-shaped): then the patch cannot touch itself, and the search skips it. Over a
 //! step, with every point moving straight, the test holds at every instant of it.
 
-use super::bvh::Bvh;
 use super::topology::Topology;
+use crate::spatial::Bvh;
 use crate::Vec3;
 use std::f64::consts::TAU;
 

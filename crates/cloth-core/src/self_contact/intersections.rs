@@ -3,10 +3,10 @@
 //! triangle, pairs sharing a particle (or seam partners) exempt. The count is zero for
 //! cloth that has never passed through itself.
 
-use super::bvh::{Aabb, Bvh};
 use super::geometry::{closest_on_triangle, segment_crosses_triangle};
 use super::topology::Topology;
 use crate::mesh::ClothMesh;
+use crate::spatial::{Aabb, Bvh};
 use crate::Vec3;
 use rayon::prelude::*;
 
@@ -56,6 +56,49 @@ pub(crate) fn count(topology: &Topology, x: &[Vec3]) -> Intersections {
                 (x, y) => x.or(y),
             },
         })
+}
+
+/// The edge-triangle pairs of different charts passing through each other at `x`, counted
+/// by chart pair (lower chart first, sorted), for the edges whose charts `edges_of` takes
+/// (pairs exempt for good are not counted; pairs exempt while tangled are).
+pub(crate) fn crossings_by_chart(
+    topology: &Topology,
+    x: &[Vec3],
+    edges_of: impl Fn(u32) -> bool + Sync,
+) -> Vec<((u32, u32), usize)> {
+    let tris = &topology.triangles;
+    let tree = triangle_tree(topology, x);
+    let mut pairs: Vec<(u32, u32)> = (0..topology.edges.len())
+        .into_par_iter()
+        .flat_map_iter(|e| {
+            let [a, b] = topology.edges[e];
+            let (p, q) = (x[a as usize], x[b as usize]);
+            let own = topology.edge_chart(e);
+            let mut found = Vec::new();
+            if !edges_of(own) {
+                return found;
+            }
+            tree.query(&Aabb::of([p, q]), |t| {
+                let other = topology.chart(t);
+                if other == own || topology.edge_triangle_exempt(e, t) {
+                    return;
+                }
+                if segment_crosses_triangle(&p, &q, &tris[t].map(|i| x[i as usize])) {
+                    found.push((own.min(other), own.max(other)));
+                }
+            });
+            found
+        })
+        .collect();
+    pairs.sort_unstable();
+    let mut counted: Vec<((u32, u32), usize)> = Vec::new();
+    for pair in pairs {
+        match counted.last_mut() {
+            Some((last, n)) if *last == pair => *n += 1,
+            _ => counted.push((pair, 1)),
+        }
+    }
+    counted
 }
 
 /// The intersecting edge-triangle pairs of `mesh` at positions `x`: pairs sharing a

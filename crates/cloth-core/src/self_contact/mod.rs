@@ -21,7 +21,6 @@
 //! Exempt are pairs with shared or neighbouring particles (the particles a seam pulls
 //! together counting as one until welded) and pairs near in the flat cloth (`topology`).
 
-mod bvh;
 mod ccd;
 mod chunks;
 mod cone;
@@ -35,6 +34,22 @@ mod surface;
 mod topology;
 
 pub use intersections::{closest_self_approach, count_self_intersections, Intersections};
+
+/// Two pieces of the cloth (charts: panels, for a garment) that passed through each other
+/// when the simulation began. Held apart, they would stay hooked through each other, so
+/// they are exempt from each other's collision until they have come apart (GarmentCode
+/// places a hood through a bodice, a collar through a neckline, and the seams pull them
+/// out of each other); from then on they collide as any cloth does.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Tangle {
+    /// A triangle of each piece.
+    pub triangles: [usize; 2],
+    /// Edge-triangle pairs of the two passing through each other at the start.
+    pub crossings: usize,
+    /// The step after which they were found apart, and collide again; `None` while they
+    /// are still through each other.
+    pub released: Option<u64>,
+}
 pub use settings::SelfCollision;
 
 use crate::contact::SLIP_SPEED;
@@ -42,8 +57,8 @@ use crate::energy::repulsion::{add_friction_drag, add_repulsion, RepulsionLaw};
 use crate::energy::Local;
 use crate::linalg::BlockSparse;
 use crate::mesh::ClothMesh;
+use crate::spatial::Aabb;
 use crate::{Mat3, Vec3};
-use bvh::Aabb;
 use ccd::Impact;
 use chunks::ChunkedSearch;
 use cone::Cone;
@@ -456,6 +471,46 @@ impl SelfContacts {
             matrix.add_coupling(k, terms);
         }
         matrix.finish_transient();
+    }
+
+    /// Finds the pieces of the cloth passing through each other at `x` and makes each such
+    /// pair exempt from the other (see [`Tangle`]).
+    pub fn untangle(&mut self, x: &[Vec3]) -> Vec<Tangle> {
+        let crossing = intersections::crossings_by_chart(&self.topology, x, |_| true);
+        self.topology.set_tangled(crossing.iter().map(|&(pair, _)| pair));
+        let first = self.topology.chart_triangles();
+        crossing
+            .into_iter()
+            .map(|((a, b), n)| Tangle {
+                triangles: [first[a as usize], first[b as usize]],
+                crossings: n,
+                released: None,
+            })
+            .collect()
+    }
+
+    /// Whether some pieces are exempt from each other, having begun tangled.
+    pub fn has_tangles(&self) -> bool {
+        !self.topology.tangled().is_empty()
+    }
+
+    /// Ends the exemption of the tangled pieces that no longer pass through each other at
+    /// `x`; returns a triangle of each of both pieces, for each pair released.
+    pub fn release_untangled(&mut self, x: &[Vec3]) -> Vec<[usize; 2]> {
+        let tangled = self.topology.tangled().to_vec();
+        let involved = |c: u32| tangled.iter().any(|&(a, b)| a == c || b == c);
+        let crossing = intersections::crossings_by_chart(&self.topology, x, involved);
+        let still = |pair: &(u32, u32)| crossing.binary_search_by(|(p, _)| p.cmp(pair)).is_ok();
+        let (kept, apart): (Vec<_>, Vec<_>) = tangled.into_iter().partition(|p| still(p));
+        if apart.is_empty() {
+            return Vec::new();
+        }
+        self.topology.set_tangled(kept);
+        let first = self.topology.chart_triangles();
+        apart
+            .into_iter()
+            .map(|(a, b)| [first[a as usize], first[b as usize]])
+            .collect()
     }
 
     /// Counts the intersecting edge-triangle pairs of the cloth at `x` (pairs sharing a

@@ -2,13 +2,13 @@
 //! on its side and loses its approach speed; pairs still crossing after
 //! [`super::IMPULSE_PASSES`] become impact zones that move as one.
 
-use super::bvh::Aabb;
 use super::ccd::{self, Impact, Paths};
 use super::cone::Cone;
 use super::contour::Motion;
 use super::surface::Search;
 use super::topology::find;
 use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
+use crate::spatial::Aabb;
 use crate::Vec3;
 
 /// What the impact passes did in one step.

@@ -7,10 +7,10 @@
 //! more than the folds. A patch that winds round like a spiral ramp would escape this test;
 //! the hierarchy's patches, compact pieces of cloth, do not.
 
-use super::bvh::{Aabb, Bvh};
 use super::cone::Cone;
 use super::contour::{outer, star_shaped, Contours, Motion};
 use super::topology::{find, Topology};
+use crate::spatial::{Aabb, Bvh};
 use crate::Vec3;
 
 /// Node pairs a search is split into, for the threads.

@@ -38,11 +38,15 @@ pub(crate) struct Topology {
     pub across: Vec<[u32; 3]>,
     /// The triangles of each particle, in compressed rows.
     vertex_triangles: (Vec<u32>, Vec<u32>),
-    /// Material coordinates of each triangle's corners, and its chart: triangles joined
-    /// across edges whose corners agree in material coordinates share one (a panel; a
-    /// welded seam parts two).
+    /// Material coordinates of each triangle's corners, and its chart (numbered from 0):
+    /// triangles joined across edges whose corners agree in material coordinates share one
+    /// (a panel; a welded seam parts two).
     corner_uv: Vec<[Vector2<f64>; 3]>,
     chart: Vec<u32>,
+    /// Pairs of charts (lower first, sorted) that passed through each other when the
+    /// simulation began: exempt from each other until they have come apart (see
+    /// [`Topology::set_tangled`]).
+    tangled: Vec<(u32, u32)>,
     /// Pairs this near in the flat cloth are exempt, m.
     rest_radius: f64,
 }
@@ -171,7 +175,20 @@ impl Topology {
                 chart[a.max(b) as usize] = a.min(b);
             }
         }
-        let chart = (0..triangles.len() as u32).map(|t| find(&mut chart, t)).collect();
+        let roots: Vec<u32> = (0..triangles.len() as u32).map(|t| find(&mut chart, t)).collect();
+        // Number the charts from 0, in the order of their first triangles.
+        let mut number = vec![u32::MAX; triangles.len()];
+        let mut charts = 0;
+        let chart = roots
+            .iter()
+            .map(|&r| {
+                if number[r as usize] == u32::MAX {
+                    number[r as usize] = charts;
+                    charts += 1;
+                }
+                number[r as usize]
+            })
+            .collect();
         Self {
             triangles,
             edges,
@@ -183,8 +200,69 @@ impl Topology {
             vertex_triangles,
             corner_uv,
             chart,
+            tangled: Vec::new(),
             rest_radius,
         }
+    }
+
+    /// The chart of triangle `t`.
+    pub fn chart(&self, t: usize) -> u32 {
+        self.chart[t]
+    }
+
+    /// The chart of edge `e`: that of its first triangle.
+    pub fn edge_chart(&self, e: usize) -> u32 {
+        self.edge_triangles(e).next().map_or(u32::MAX, |t| self.chart[t])
+    }
+
+    /// A triangle of each chart: its first.
+    pub fn chart_triangles(&self) -> Vec<usize> {
+        let mut first = Vec::new();
+        for (t, &c) in self.chart.iter().enumerate() {
+            if c as usize == first.len() {
+                first.push(t);
+            }
+        }
+        first
+    }
+
+    /// Makes the chart pairs in `pairs` exempt from each other (and no others).
+    pub fn set_tangled(&mut self, pairs: impl IntoIterator<Item = (u32, u32)>) {
+        self.tangled.clear();
+        self.tangled.extend(
+            pairs
+                .into_iter()
+                .filter(|(a, b)| a != b)
+                .map(|(a, b)| (a.min(b), a.max(b))),
+        );
+        self.tangled.sort_unstable();
+        self.tangled.dedup();
+    }
+
+    pub fn tangled(&self) -> &[(u32, u32)] {
+        &self.tangled
+    }
+
+    /// Whether charts `a` and `b` are exempt from each other, having begun tangled.
+    fn charts_tangled(&self, a: u32, b: u32) -> bool {
+        a != b && self.tangled.binary_search(&(a.min(b), a.max(b))).is_ok()
+    }
+
+    /// Whether some triangle of particle `p` is of a chart tangled with `chart`.
+    fn particle_tangled_with(&self, p: usize, chart: u32) -> bool {
+        !self.tangled.is_empty()
+            && self
+                .triangles_of(p)
+                .iter()
+                .any(|&s| self.charts_tangled(self.chart[s as usize], chart))
+    }
+
+    /// Whether some triangle of edge `e` is of a chart tangled with `chart`.
+    fn edge_tangled_with(&self, e: usize, chart: u32) -> bool {
+        !self.tangled.is_empty()
+            && self
+                .edge_triangles(e)
+                .any(|s| self.charts_tangled(self.chart[s], chart))
     }
 
     /// The material coordinates of particle `i` in triangle `t` (one of its own), as a
@@ -222,9 +300,13 @@ impl Topology {
         a == b || row(&self.neighbours, a as usize).binary_search(&b).is_ok()
     }
 
-    /// Particle `p` and triangle `t` are never in contact (see the module's introduction).
+    /// Particle `p` and triangle `t` are not in contact (see the module's introduction),
+    /// nor while their charts are tangled.
     pub fn vertex_triangle_exempt(&self, p: usize, t: usize) -> bool {
         if self.triangles[t].iter().any(|&i| self.near_in_mesh(p as u32, i)) {
+            return true;
+        }
+        if self.particle_tangled_with(p, self.chart[t]) {
             return true;
         }
         let [a, b, c] = self.material_triangle(t);
@@ -238,11 +320,18 @@ impl Topology {
         })
     }
 
-    /// Edges `e` and `f` are never in contact (as for a particle and a triangle).
+    /// Edges `e` and `f` are not in contact (as for a particle and a triangle).
     pub fn edge_edge_exempt(&self, e: usize, f: usize) -> bool {
         if self.edges[e]
             .iter()
             .any(|&i| self.edges[f].iter().any(|&j| self.near_in_mesh(i, j)))
+        {
+            return true;
+        }
+        if !self.tangled.is_empty()
+            && self
+                .edge_triangles(f)
+                .any(|t| self.edge_tangled_with(e, self.chart[t]))
         {
             return true;
         }

@@ -38,10 +38,12 @@ struct HingeElement {
     slots: [u32; 16],
 }
 
-/// Two particles a seam pulls together while it is sewn.
+/// Two particles a seam pulls together while it is sewn, with the share of the pull they
+/// take.
 #[derive(Debug, Clone)]
 struct SeamElement {
     v: [u32; 2],
+    weight: f64,
     slots: [u32; 4],
 }
 
@@ -49,7 +51,8 @@ struct SeamElement {
 /// gap of `reach` (m), and a constant pull of `stiffness * reach` beyond, so a wide gap
 /// is closed by a bounded force instead of one that tears the panels; and a dashpot of
 /// `damping` (N s/m) per pair on the pair's relative velocity, so a pair closes at most
-/// at about `stiffness * reach / damping` however far apart it starts.
+/// at about `stiffness * reach / damping` however far apart it starts. Each pair takes
+/// these times its weight (see [`crate::SimulationBuilder::seam_weights`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SeamPull {
     pub stiffness: f64,
@@ -107,7 +110,8 @@ pub(crate) struct ForceModel {
 impl ForceModel {
     /// Builds the elements and the matrix pattern they fill. Triangle `t` is of
     /// `fabrics[triangle_fabric[t]]` (as the builder checked); `seams` are the particle
-    /// pairs that seam forces may pull together (see [`SeamPull`]); `calibration` gives
+    /// pairs that seam forces may pull together (see [`SeamPull`]), each with its weight in
+    /// `seam_weights`; `calibration` gives
     /// each fabric's bending calibration instead of computing it; hinges along a clamp of
     /// `pinned` particles are stiffened (see [`bending::clamp_factor`]).
     pub fn new(
@@ -115,6 +119,7 @@ impl ForceModel {
         fabrics: Vec<Fabric>,
         triangle_fabric: &[usize],
         seams: &[[usize; 2]],
+        seam_weights: &[f64],
         calibration: Option<Vec<[f64; 2]>>,
         pinned: &[bool],
     ) -> (Self, BlockSparse) {
@@ -182,8 +187,10 @@ impl ForceModel {
             .collect();
         let seams: Vec<SeamElement> = seams
             .iter()
-            .map(|v| SeamElement {
+            .zip(seam_weights)
+            .map(|(v, &weight)| SeamElement {
                 v: v.map(|i| i as u32),
+                weight,
                 slots: slots(v).try_into().expect("4 slots"),
             })
             .collect();
@@ -351,13 +358,26 @@ impl ForceModel {
             let beta = self.max_damping;
             let seam_kernel = |e: &SeamElement, energy: &mut f64| {
                 let mut local = Local::<2>::default();
-                let secant =
-                    add_seam_pull(pull, [x[e.v[0] as usize], x[e.v[1] as usize]], need_k, &mut local);
+                let weighted = SeamPull {
+                    stiffness: e.weight * pull.stiffness,
+                    reach: pull.reach,
+                    damping: e.weight * pull.damping,
+                };
+                let secant = add_seam_pull(
+                    weighted,
+                    [x[e.v[0] as usize], x[e.v[1] as usize]],
+                    need_k,
+                    &mut local,
+                );
                 *energy = local.energy;
+                if secant <= 0.0 {
+                    // A pair of weight zero adds nothing.
+                    return;
+                }
                 // The dashpot is the pair's Rayleigh damping: its Hessian is the secant
                 // stiffness times the pair's identity blocks, so `beta K` is `damping`
                 // times them.
-                let beta = beta + pull.damping / secant;
+                let beta = beta + weighted.damping / secant;
                 // SAFETY: as above.
                 unsafe { sink.put(&local, &e.v, &e.slots, beta) };
             };
@@ -543,6 +563,7 @@ mod tests {
             vec![fabric],
             &vec![0; mesh.triangles().len()],
             &SEAMS,
+            &WEIGHTS,
             None,
             &vec![false; mesh.vertex_count()],
         );
@@ -564,6 +585,17 @@ mod tests {
     }
 
     const SEAMS: [[usize; 2]; 3] = [[0, 1], [0, 19], [3, 12]];
+    /// Each pair's share of the pull.
+    const WEIGHTS: [f64; 3] = [1.0, 0.5, 2.0];
+
+    /// The pull on pair `k` of [`SEAMS`]: the model's, times the pair's weight.
+    fn weighted(pull: SeamPull, k: usize) -> SeamPull {
+        SeamPull {
+            stiffness: WEIGHTS[k] * pull.stiffness,
+            reach: pull.reach,
+            damping: WEIGHTS[k] * pull.damping,
+        }
+    }
 
     #[test]
     fn seam_pull_derivatives_match_finite_differences() {
@@ -733,9 +765,9 @@ mod tests {
             );
             add(&ids, &h);
         }
-        for pair in SEAMS {
+        for (k, pair) in SEAMS.into_iter().enumerate() {
             let mut l = Local::<2>::default();
-            add_seam_pull(model.seam_pull(), pair.map(|i| x[i]), true, &mut l);
+            add_seam_pull(weighted(model.seam_pull(), k), pair.map(|i| x[i]), true, &mut l);
             add(&pair, &l.hessian_dense());
         }
         // The target holds (h^2 + h beta) K, here with h = 1.
@@ -784,10 +816,11 @@ mod tests {
             ..model.seam_pull()
         });
         let (f1, m1) = run(&mut model);
-        // Force: -c (v_a - v_b) on a, the opposite on b, pair by pair.
+        // Force: -w c (v_a - v_b) on a, the opposite on b, pair by pair (w its weight).
         let mut expected = vec![zero; n];
         let mut blocks = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
-        for [a, b] in SEAMS {
+        for (k, [a, b]) in SEAMS.into_iter().enumerate() {
+            let c = WEIGHTS[k] * c;
             let df = -c * (v[a] - v[b]);
             expected[a] += df;
             expected[b] -= df;

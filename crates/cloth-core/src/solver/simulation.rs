@@ -4,12 +4,12 @@ use super::assembly::{ForceModel, SeamPull};
 use super::{
     Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
 };
-use crate::contact::{Collider, Contacts};
+use crate::contact::{Collider, Contacts, PassThrough};
 use crate::error::{DivergenceReason, ParamError, SimError};
 use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
 use crate::mesh::ClothMesh;
-use crate::self_contact::{Intersections, SelfContacts, StepEnd};
+use crate::self_contact::{Intersections, SelfContacts, StepEnd, Tangle};
 use crate::Vec3;
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -26,6 +26,8 @@ pub struct SimulationBuilder {
     velocities: Option<Vec<Vec3>>,
     collider: Option<Arc<dyn Collider>>,
     seams: Vec<[usize; 2]>,
+    seam_weights: Option<Vec<f64>>,
+    pass_through: Vec<PassThrough>,
     bending_calibration: Option<Vec<[f64; 2]>>,
 }
 
@@ -40,6 +42,8 @@ impl SimulationBuilder {
             velocities: None,
             collider: None,
             seams: Vec::new(),
+            seam_weights: None,
+            pass_through: Vec::new(),
             bending_calibration: None,
         }
     }
@@ -74,11 +78,25 @@ impl SimulationBuilder {
         self.seams = pairs;
         self
     }
+    /// How much of the seam pull each pair of [`seams`](Self::seams) takes (1 each by
+    /// default): its share of the seam's length, so that a pair on a short piece of seam,
+    /// whose particles are light, is not pulled as hard as one on a long piece.
+    pub fn seam_weights(mut self, weights: Vec<f64>) -> Self {
+        self.seam_weights = Some(weights);
+        self
+    }
     /// Cloth of several fabrics (a garment's panels): triangle `t` is of
     /// `fabrics[triangle_fabric[t]]`. Replaces the fabric given to [`new`](Self::new).
     pub fn fabrics(mut self, fabrics: Vec<Fabric>, triangle_fabric: Vec<usize>) -> Self {
         self.fabrics = fabrics;
         self.triangle_fabric = triangle_fabric;
+        self
+    }
+    /// Pieces of the cloth that pass through the bodies they start in, untouched by them,
+    /// until they are out (see [`PassThrough`]); other particles inside a body are
+    /// carried out to its nearest side.
+    pub fn pass_through(mut self, pieces: Vec<PassThrough>) -> Self {
+        self.pass_through = pieces;
         self
     }
     /// Uses these bending calibration factors, one pair per fabric, instead of computing
@@ -169,6 +187,32 @@ impl SimulationBuilder {
                 expected: "pairs of two different particles of the mesh",
             });
         }
+        if let Some(&i) = self
+            .pass_through
+            .iter()
+            .flat_map(|p| &p.members)
+            .find(|&&i| i >= n)
+        {
+            return Err(ParamError::OutOfRange {
+                name: "pass_through",
+                value: i as f64,
+                expected: "particles of the mesh",
+            });
+        }
+        let seam_weights = self.seam_weights.unwrap_or_else(|| vec![1.0; self.seams.len()]);
+        ParamError::check(
+            seam_weights.len() == self.seams.len(),
+            "seam_weights",
+            seam_weights.len() as f64,
+            "one weight per seam pair",
+        )?;
+        if let Some(&w) = seam_weights.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
+            return Err(ParamError::OutOfRange {
+                name: "seam_weights",
+                value: w,
+                expected: "finite weights >= 0",
+            });
+        }
         if let Some(kappa) = &self.bending_calibration {
             ParamError::check(
                 kappa.len() == self.fabrics.len(),
@@ -189,6 +233,7 @@ impl SimulationBuilder {
             self.fabrics,
             &self.triangle_fabric,
             &self.seams,
+            &seam_weights,
             self.bending_calibration,
             &pinned,
         );
@@ -203,9 +248,11 @@ impl SimulationBuilder {
             let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness, friction);
             c.particles
                 .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
+            c.particles.set_pass_through(self.pass_through.clone());
             c
         });
-        let self_contacts = self_contacts_for(&self.mesh, &self.seams, &self.settings, &model, &pinned);
+        let mut self_contacts = self_contacts_for(&self.mesh, &self.seams, &self.settings, &model, &pinned);
+        let tangles = self_contacts.as_mut().map_or_else(Vec::new, |sc| sc.untangle(&x));
         let pin_count = pins.len();
         let filter_capacity = if contacts.is_some() { n } else { pin_count };
         let zeros = vec![Vec3::zeros(); n];
@@ -219,6 +266,7 @@ impl SimulationBuilder {
             contacts,
             seams: self.seams,
             self_contacts,
+            tangles,
             x,
             v,
             time: 0.0,
@@ -289,6 +337,8 @@ pub struct Simulation {
     /// The seams' particle pairs (exempt from self-collision until welded).
     pub(super) seams: Vec<[usize; 2]>,
     pub(super) self_contacts: Option<SelfContacts>,
+    /// The pieces of the cloth found passing through each other at the start.
+    pub(super) tangles: Vec<Tangle>,
     pub(super) x: Vec<Vec3>,
     pub(super) v: Vec<Vec3>,
     pub(super) time: f64,
@@ -374,6 +424,25 @@ impl Simulation {
         if settings.self_collision != self.settings.self_collision {
             self.self_contacts =
                 self_contacts_for(&self.mesh, &self.seams, &settings, &self.model, &self.pinned);
+            // The new self-collision finds again what still passes through itself.
+            let now = self
+                .self_contacts
+                .as_mut()
+                .map_or_else(Vec::new, |sc| sc.untangle(&self.x));
+            for t in self.tangles.iter_mut().filter(|t| t.released.is_none()) {
+                if !now.iter().any(|n| n.triangles == t.triangles) {
+                    t.released = Some(self.steps);
+                }
+            }
+            for n in now {
+                if !self
+                    .tangles
+                    .iter()
+                    .any(|t| t.triangles == n.triangles && t.released.is_none())
+                {
+                    self.tangles.push(n);
+                }
+            }
         }
         self.settings = settings;
         Ok(())
@@ -453,6 +522,7 @@ impl Simulation {
                     // The warm start and the contact states were of the rejected substep.
                     self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
                     if let Some(c) = &mut self.contacts {
+                        c.particles.rewind_passing();
                         c.particles
                             .refresh(c.collider.as_ref(), self.time, &self.x, self.settings.parallel);
                     }
@@ -476,6 +546,7 @@ impl Simulation {
         }
         self.time = start_time + h;
         self.steps += 1;
+        self.release_tangles();
         total.step = self.steps;
         total.time = self.time;
         total.smallest_substep = h / (1u64 << finest) as f64;
@@ -813,6 +884,35 @@ impl Simulation {
         self.contacts.as_ref().map_or(0, |c| {
             crate::contact::count_body_intersections(c.collider.as_ref(), self.time, &self.mesh, &self.x)
         })
+    }
+
+    /// The pieces still passing through the bodies (see [`SimulationBuilder::pass_through`]).
+    pub fn passing(&self) -> Vec<PassThrough> {
+        self.contacts
+            .as_ref()
+            .map_or_else(Vec::new, |c| c.particles.passing().cloned().collect())
+    }
+
+    /// The pieces of the cloth that passed through each other at the start (see
+    /// [`Tangle`]), and when each came apart.
+    pub fn tangles(&self) -> &[Tangle] {
+        &self.tangles
+    }
+
+    /// Lets the tangled pieces that have come apart collide again.
+    fn release_tangles(&mut self) {
+        let Some(sc) = self.self_contacts.as_mut().filter(|sc| sc.has_tangles()) else {
+            return;
+        };
+        for pair in sc.release_untangled(&self.x) {
+            if let Some(t) = self
+                .tangles
+                .iter_mut()
+                .find(|t| t.triangles == pair && t.released.is_none())
+            {
+                t.released = Some(self.steps);
+            }
+        }
     }
 
     /// The particle pairs the seams given to the builder pull together.

@@ -14,7 +14,7 @@ pub use weld::Welded;
 
 use crate::meshing::mesh_region;
 use crate::pattern::{Edge, Pattern, SeamOrientation};
-use cloth_core::{ClothMesh, Vec3};
+use cloth_core::{ClothMesh, PassThrough, Vec3};
 use nalgebra::Rotation2;
 
 /// The default target edge length, m: about 6,000 particles for a dress.
@@ -53,6 +53,9 @@ pub struct Garment {
     /// The triangles along the longer side of seams whose sides differ, gathered onto the
     /// shorter: they are sewn slack in compression (see [`gathering`]).
     pub gathered: Vec<usize>,
+    /// The panels placed through a thin part of a body, to pass through it while sewn (see
+    /// [`Garment::move_out_of`]).
+    pub passing: Vec<PassThrough>,
 }
 
 impl GarmentBuilder {
@@ -213,6 +216,7 @@ impl GarmentBuilder {
             panel_names: pattern.panels.iter().map(|p| p.name.clone()).collect(),
             panel_fabrics: pattern.panels.iter().map(|p| p.fabric.clone()).collect(),
             gathered,
+            passing: Vec::new(),
         })
     }
 }
@@ -221,6 +225,32 @@ impl Garment {
     /// Every seam's vertex pairs in one list.
     pub fn seam_pairs(&self) -> Vec<[usize; 2]> {
         self.seams.iter().flat_map(|s| s.pairs.iter().copied()).collect()
+    }
+
+    /// The length of seam each pair of [`Garment::seam_pairs`] stands for in the flat
+    /// cloth, m, in the same order: half the way to its neighbours along each side, the
+    /// shorter side's (a gathered side is drawn in onto the other). GarmentCode's outlines
+    /// have edges of a millimetre or two, whose particles are a hundredth the mass of the
+    /// others: pulled as hard as a pair on a whole cell, they were thrown at 2 m/s in the
+    /// first step of sewing.
+    pub fn seam_shares(&self) -> Vec<f64> {
+        let uv = self.mesh.uv();
+        let mut shares = Vec::new();
+        for seam in &self.seams {
+            let n = seam.pairs.len();
+            let side = |k: usize, s: usize| {
+                let at = |j: usize| uv[seam.pairs[j][s]];
+                let before = if k > 0 { (at(k) - at(k - 1)).norm() } else { 0.0 };
+                let after = if k + 1 < n {
+                    (at(k + 1) - at(k)).norm()
+                } else {
+                    0.0
+                };
+                0.5 * (before + after)
+            };
+            shares.extend((0..n).map(|k| side(k, 0).min(side(k, 1))));
+        }
+        shares
     }
 
     /// The seam with the widest gap at `positions`, and that gap, m (checked every

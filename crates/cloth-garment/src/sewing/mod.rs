@@ -6,7 +6,9 @@ mod settings;
 pub use settings::{DrapeSettings, SewingSettings};
 
 use crate::garment::{Garment, GarmentError, Welded};
-use cloth_core::{Collider, Fabric, Integrator, Interrupt, RestOutcome, SeamPull, SimError, Simulation};
+use cloth_core::{
+    Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError, Simulation,
+};
 use cloth_core::{SimulationBuilder, SolverSettings, StepStats, Vec3};
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -20,7 +22,8 @@ pub struct SewingReport {
     pub cg_iterations: usize,
     /// Widest seam gap when the seams were welded, m.
     pub max_gap: f64,
-    /// The pull per seam pair at full strength, N.
+    /// The pull at full strength on a pair of the mean spacing, N (each pair's is in
+    /// proportion to its share of the seam, see [`Garment::seam_shares`]).
     pub pull: f64,
     /// Each time the seams stalled, and how the pull was raised to close them.
     pub stalls: Vec<SeamStall>,
@@ -48,6 +51,9 @@ pub struct Sewn {
     pub report: SewingReport,
     /// Bending calibration of the panels, kept for the drape.
     pub bending_calibration: Vec<[f64; 2]>,
+    /// The panels still passing through a thin part of a body they were placed through
+    /// (see [`Garment::passing`]), in welded particles: they go on passing in the drape.
+    pub passing: Vec<PassThrough>,
 }
 
 /// Sews `garment`, each panel of its fabric in `panel_fabrics`, around the bodies of
@@ -96,7 +102,14 @@ pub fn sew(
         .iter()
         .map(Fabric::membrane_stiffness)
         .fold(f64::INFINITY, f64::min);
-    let spacing = seam_spacing(garment);
+    // Each pair is pulled by its share of the seam's length; the mean share is the
+    // spacing of the pairs.
+    let shares = garment.seam_shares();
+    let spacing = shares.iter().sum::<f64>() / shares.len().max(1) as f64;
+    let seam_weights = shares
+        .iter()
+        .map(|s| if spacing > 0.0 { s / spacing } else { 1.0 })
+        .collect();
     slacken_gathers(garment, spacing, &mut fabrics, &mut triangle_fabric);
     // Friction on the body would hold seams apart where the panels press on it; the
     // drape afterwards has the fabrics' own.
@@ -115,6 +128,8 @@ pub fn sew(
         .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
         .seams(garment.seam_pairs())
+        .seam_weights(seam_weights)
+        .pass_through(garment.passing.clone())
         .collider(collider)
         .build()?;
     sim.set_interrupt(interrupt.clone());
@@ -170,8 +185,22 @@ pub fn sew(
         }
     }
     let welded = garment.weld(sim.positions())?;
+    let map = |ids: &[usize]| {
+        let mut out: Vec<usize> = ids.iter().map(|&i| welded.particle_of[i]).collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    };
+    let passing = sim
+        .passing()
+        .iter()
+        .map(|p| PassThrough {
+            members: map(&p.members),
+        })
+        .collect();
     Ok(Sewn {
         welded,
+        passing,
         fabrics,
         triangle_fabric,
         report: SewingReport {
@@ -214,6 +243,7 @@ pub fn drape_simulation(
             .fabrics(fabrics, sewn.triangle_fabric.clone())
             .settings(solver)
             .bending_calibration(sewn.bending_calibration.clone())
+            .pass_through(sewn.passing.clone())
             .collider(collider)
             .build()?,
     )
@@ -314,24 +344,6 @@ fn slacken_gathers(garment: &Garment, cell: f64, fabrics: &mut Vec<Fabric>, tria
             fabrics.len() - 1
         });
         triangle_fabric[t] = variant;
-    }
-}
-
-/// Mean material spacing of consecutive seam vertices: the length of cloth each pair
-/// pulls on.
-fn seam_spacing(garment: &Garment) -> f64 {
-    let uv = garment.mesh.uv();
-    let (mut sum, mut count) = (0.0, 0);
-    for seam in &garment.seams {
-        for w in seam.pairs.windows(2) {
-            sum += (uv[w[1][0]] - uv[w[0][0]]).norm();
-            count += 1;
-        }
-    }
-    if count == 0 {
-        0.0
-    } else {
-        sum / count as f64
     }
 }
 

@@ -1,7 +1,8 @@
-//! A bounding volume hierarchy of axis-aligned boxes, built once over the cloth's
-//! primitives where they start and refitted to their moving boxes every time it is asked.
-//! Cloth barely stretches, so primitives grouped near each other at the start stay near
-//! each other however the cloth folds: refitting keeps the tree useful without rebuilding.
+//! A bounding volume hierarchy of axis-aligned boxes, built once over primitives where
+//! they start and refitted to their moving boxes every time it is asked. Cloth barely
+//! stretches, and a rigid body's edges keep their arrangement, so primitives grouped near
+//! each other at the start stay near each other however the cloth folds or the body moves:
+//! refitting keeps the tree useful without rebuilding.
 
 use crate::Vec3;
 
@@ -108,6 +109,11 @@ impl Bvh {
             Aabb::union,
         );
         self.boxes = boxes;
+    }
+
+    /// Number of primitives.
+    pub fn len(&self) -> usize {
+        self.order.len()
     }
 
     /// Number of nodes; the root is node 0.
