@@ -5,6 +5,7 @@ use cloth::collide::Bodies;
 use cloth::scenes::{CubeCorner, FallingPlate, Scene, SphereDrop, Tablecloth, TiltedPlane, TurningSphere};
 use cloth::{RestCriteria, Simulation, StopReason, Vec3};
 use std::ops::ControlFlow;
+use std::sync::Arc;
 
 /// Steps `scene` until at rest or `max_steps`, asserting after every step that no particle
 /// is deeper inside a body than a tenth of the contact thickness.
@@ -442,4 +443,81 @@ fn a_fast_sheet_does_not_pass_through_a_thin_plate() {
         .map(|p| p.z)
         .fold(f64::INFINITY, f64::min);
     assert!((lowest - setup.thickness).abs() < 1e-3, "resting at z = {lowest}");
+}
+
+/// A 30 cm sheet standing across a 3 cm thick slab (a hand through a panel), moving at
+/// 0.5 m/s along its normal for 0.2 s, with its whole area passing through the bodies or
+/// not; the sheet's positions after.
+fn sheet_through_a_hand(pass: bool) -> (Vec<Vec3>, Simulation, Arc<cloth::collide::Bodies>) {
+    use cloth::collide::{Body, TriSurface};
+    use cloth::{Fabric, GridBuilder, PassThrough, SimulationBuilder, SolverSettings};
+    let hand = TriSurface::cuboid(Vec3::new(0.015, 0.04, 0.08)).unwrap();
+    let bodies = Arc::new(Bodies::new(vec![Body::new("hand", hand)]));
+    let mesh = GridBuilder::new(31, 31)
+        .size(0.3, 0.3)
+        .origin(Vec3::new(0.003, -0.15, -0.15))
+        .axes(Vec3::y(), Vec3::z())
+        .build()
+        .unwrap();
+    let n = mesh.vertex_count();
+    let inside = mesh
+        .positions()
+        .iter()
+        .filter(|p| bodies.signed_distance(0.0, p).is_some_and(|(d, _)| d < 0.0))
+        .count();
+    assert!(inside > 50, "{inside} particles start in the hand");
+    let pieces = if pass {
+        vec![PassThrough {
+            members: (0..n).collect(),
+        }]
+    } else {
+        Vec::new()
+    };
+    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like().with_damping(0.01))
+        .settings(SolverSettings {
+            gravity: Vec3::zeros(),
+            time_step: 0.01,
+            ..SolverSettings::default()
+        })
+        .velocities(vec![Vec3::new(0.5, 0.0, 0.0); n])
+        .pass_through(pieces)
+        .collider(bodies.clone())
+        .build()
+        .unwrap();
+    for _ in 0..20 {
+        sim.step().unwrap();
+    }
+    (sim.positions().to_vec(), sim, bodies)
+}
+
+#[test]
+fn a_sheet_placed_through_a_hand_passes_out_of_it_whole_then_is_held_by_it() {
+    let spread = |x: &[Vec3]| {
+        let (lo, hi) = x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.x), hi.max(p.x))
+        });
+        hi - lo
+    };
+    // Held by the hand, the part of the sheet in it is pushed out to its nearest faces and
+    // the sheet hangs on it, bent round it.
+    let (caught, _, _) = sheet_through_a_hand(false);
+    println!("caught spread {}", spread(&caught));
+    assert!(spread(&caught) > 0.02, "spread {}", spread(&caught));
+    // Passing, it comes out flat beyond the hand, and from then on the hand holds it.
+    let (passed, mut sim, bodies) = sheet_through_a_hand(true);
+    println!("passed spread {}", spread(&passed));
+    assert!(spread(&passed) < 0.005, "spread {}", spread(&passed));
+    assert!(passed.iter().all(|p| p.x > 0.015), "not out of the hand");
+    assert!(sim.passing().is_empty(), "still passing");
+    let n = passed.len();
+    sim.set_velocities(&vec![Vec3::new(-0.5, 0.0, 0.0); n]).unwrap();
+    for _ in 0..20 {
+        sim.step().unwrap();
+        let (depth, _) = bodies.deepest_inside(sim.time(), sim.positions());
+        assert_eq!(depth, 0.0, "inside the hand at step {}", sim.step_count());
+    }
+    assert_eq!(sim.body_intersections(), 0);
+    // Stopped on the hand's face: the middle of the sheet rests against it.
+    let middle = sim.positions()[15 * 31 + 15];
+    assert!(middle.x > 0.015 && middle.x < 0.03, "{middle}");
 }

@@ -416,3 +416,68 @@ b = { panel = "bodice", edge = "dart_right" }
     let welded = garment.weld(x).unwrap();
     assert_eq!(welded.mesh.vertex_count(), garment.mesh.vertex_count() - 5);
 }
+
+#[test]
+fn each_seam_pair_stands_for_its_share_of_the_shorter_side() {
+    // The back's right side is 34 cm, gathered onto the front's 30 cm left side.
+    let pattern = Pattern::from_toml_str(&tube(34.0, ""), "tube.toml").unwrap();
+    let garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
+    let shares = garment.seam_shares();
+    assert_eq!(shares.len(), garment.seam_pairs().len());
+    let mut from = 0;
+    for (seam, sides) in garment.seams.iter().zip([(0.30f64, 0.30f64), (0.30, 0.34)]) {
+        let own = &shares[from..from + seam.pairs.len()];
+        from += seam.pairs.len();
+        // Half the way to each neighbour: the ends half an interior pair's, and together the
+        // length of the shorter side.
+        let total: f64 = own.iter().sum();
+        assert!((total - sides.0.min(sides.1)).abs() < 1e-9, "{total}");
+        let spacing = sides.0.min(sides.1) / (own.len() - 1) as f64;
+        assert!((own[0] - 0.5 * spacing).abs() < 1e-9 && (own[own.len() - 1] - 0.5 * spacing).abs() < 1e-9);
+        assert!(
+            own[1..own.len() - 1].iter().all(|s| (s - spacing).abs() < 1e-9),
+            "{own:?}"
+        );
+    }
+}
+
+#[test]
+fn a_panel_through_a_thin_part_of_the_body_passes_through_it_instead() {
+    use cloth_collide::{Body, TriSurface};
+    use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+    // A hand, 3 cm thick along the front panel's normal, through the middle of it.
+    let mannequin = Mannequin::new(&Measurements::default()).unwrap();
+    let mut parts = mannequin.bodies();
+    let hand = Body::new(
+        "hand",
+        TriSurface::cuboid(cloth_core::Vec3::new(0.04, 0.015, 0.08)).unwrap(),
+    )
+    .with_pose(Isometry3::from_parts(
+        Translation3::new(0.0, -0.17, 0.6),
+        UnitQuaternion::identity(),
+    ))
+    .unwrap();
+    parts.push(hand);
+    let bodies = Bodies::new(parts);
+    let skirt = Pattern::from_toml_str(SKIRT, "skirt.toml").unwrap();
+    let mut garment = GarmentBuilder::new(skirt).edge_length(0.02).build().unwrap();
+    let before = garment.mesh.positions().to_vec();
+    let warnings = garment.move_out_of(&bodies);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let w = &warnings[0];
+    assert_eq!((w.panel.as_str(), w.body.as_str()), ("front", "hand"));
+    assert!(w.passing > 0 && w.moved.is_none(), "{w:?}");
+    assert!(w.to_string().contains("passes through"), "{w}");
+    // Not moved: the whole front panel passes through.
+    assert_eq!(garment.mesh.positions(), &before[..]);
+    assert_eq!(garment.passing.len(), 1);
+    let front: std::collections::BTreeSet<usize> = garment
+        .mesh
+        .triangles()
+        .iter()
+        .zip(&garment.triangle_panel)
+        .filter(|(_, &p)| p == 0)
+        .flat_map(|(t, _)| *t)
+        .collect();
+    assert_eq!(garment.passing[0].members, front.into_iter().collect::<Vec<_>>());
+}
