@@ -90,6 +90,21 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             )?;
         }
     }
+    if !report.tangles.is_empty() {
+        writeln!(
+            out,
+            "\nPieces found through each other when a stage began, let pass each other until apart:\n\n\
+             | stage | pieces | crossing edges | apart after step |\n|---|---|---|---|"
+        )?;
+        for t in &report.tangles {
+            let apart = t.apart_after.map_or("not apart".to_string(), |s| s.to_string());
+            writeln!(
+                out,
+                "| {} | {} and {} | {} | {} |",
+                t.stage, t.pieces[0], t.pieces[1], t.crossings, apart
+            )?;
+        }
+    }
     if !report.checkpoints.is_empty() {
         writeln!(
             out,

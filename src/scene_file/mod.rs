@@ -23,6 +23,7 @@ pub use observer::RunObserver;
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
 pub use report::{
     Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, StrainSummary,
+    TangleRecord,
 };
 pub use run::RunResult;
 pub use warning::SceneWarning;

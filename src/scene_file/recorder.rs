@@ -6,7 +6,7 @@ use super::observer::RunObserver;
 use super::records::OutputSpec;
 use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport, StrainSummary};
 use crate::obj::write_cloth_obj_with_uv;
-use cloth_core::{ClothMesh, Simulation, StepStats, Vec3};
+use cloth_core::{ClothMesh, Simulation, StepStats, Tangle, Vec3};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -37,6 +37,8 @@ pub(super) struct Recorder<'a> {
     frames: Vec<FrameRecord>,
     /// Why the recorder itself stopped the run (a frame it could not write).
     failure: Option<String>,
+    /// The pieces of the cloth found through each other at the start of each stage.
+    tangles: Vec<(&'static str, Tangle)>,
 }
 
 /// What a run leaves: its last good state and what was recorded on the way.
@@ -48,6 +50,8 @@ pub(super) struct Recorded {
     pub time: f64,
     pub checkpoints: Vec<Checkpoint>,
     pub frames: Vec<FrameRecord>,
+    /// Each stage's pieces found through each other at its start, and when they came apart.
+    pub tangles: Vec<(&'static str, Tangle)>,
 }
 
 impl<'a> Recorder<'a> {
@@ -79,6 +83,7 @@ impl<'a> Recorder<'a> {
             checkpoint_rows: Vec::new(),
             frames: Vec::new(),
             failure: None,
+            tangles: Vec::new(),
         }
     }
 
@@ -150,6 +155,7 @@ impl<'a> Recorder<'a> {
             time: self.time,
             checkpoints: self.checkpoint_rows,
             frames: self.frames,
+            tangles: self.tangles,
         }
     }
 
@@ -162,6 +168,10 @@ impl<'a> Recorder<'a> {
             self.seams.extend_from_slice(sim.seams());
             self.exemption_radius = sim.self_exemption_radius();
         }
+        let stage = self.stage;
+        self.tangles.retain(|(s, _)| *s != stage);
+        self.tangles
+            .extend(sim.tangles().iter().map(|t| (stage, t.clone())));
         self.positions.clear();
         self.positions.extend_from_slice(sim.positions());
         self.time = sim.time();

@@ -115,12 +115,28 @@ pub struct RunReport {
     pub largest_seam_gap: Option<f64>,
     /// When seams stopped closing while sewn, and how the pull was raised to close them.
     pub seam_stalls: Vec<crate::garment::sewing::SeamStall>,
+    /// Pieces of the cloth (panels) found through each other at the start of a stage,
+    /// exempt from each other until they came apart.
+    pub tangles: Vec<TangleRecord>,
     pub checkpoints: Vec<Checkpoint>,
     /// What a fabric test reads from the cloth at rest (a finished run of a test scene).
     pub measurement: Option<Measurement>,
     /// Frames written, if the scene asked for them.
     pub frames: Vec<FrameRecord>,
     pub warnings: Vec<String>,
+}
+
+/// Two pieces of the cloth found passing through each other when a stage began.
+#[derive(Debug, Clone, Serialize)]
+pub struct TangleRecord {
+    pub stage: &'static str,
+    /// The pieces: panels of a garment, or the pieces of a sheet by a triangle of each.
+    pub pieces: [String; 2],
+    /// Edge-triangle pairs of the two passing through each other at the start.
+    pub crossings: usize,
+    /// The step of the stage after which they were found apart; `None`: still through
+    /// each other at its end.
+    pub apart_after: Option<u64>,
 }
 
 /// A fabric test's reading.

@@ -6,7 +6,7 @@ use super::build::{Prepared, PreparedCloth, SheetTest};
 use super::observer::RunObserver;
 use super::recorder::{Recorded, Recorder};
 use super::records::SceneFile;
-use super::report::{Measurement, RunOutcome, RunReport, RunSettings, StrainSummary};
+use super::report::{Measurement, RunOutcome, RunReport, RunSettings, StrainSummary, TangleRecord};
 use super::SceneFileError;
 use crate::garment::sewing::{drape, sew};
 use crate::garment::GarmentError;
@@ -47,8 +47,13 @@ impl Prepared {
         let mut gap = None;
         let mut seam_stalls = Vec::new();
         let mut sheet_test = None;
+        // Names the piece of the cloth a triangle is of (a garment's panels keep their
+        // triangles' order through welding).
+        let mut piece_of: Box<dyn Fn(usize) -> String> = Box::new(|t| format!("the piece of triangle {t}"));
         let (settings, rec) = match self.cloth {
             PreparedCloth::Garment { garment, fabrics } => {
+                let (panels, names) = (garment.triangle_panel.clone(), garment.panel_names.clone());
+                piece_of = Box::new(move |t| format!("panel '{}'", names[panels[t]]));
                 let mut rec = Recorder::new(
                     observer,
                     &scene.output,
@@ -130,7 +135,17 @@ impl Prepared {
             time,
             checkpoints,
             frames,
+            tangles,
         } = rec.finish();
+        let tangles = tangles
+            .into_iter()
+            .map(|(stage, t)| TangleRecord {
+                stage,
+                pieces: t.triangles.map(&piece_of),
+                crossings: t.crossings,
+                apart_after: t.released,
+            })
+            .collect();
         let (deepest, _) = self.bodies.deepest_inside(time, &positions);
         let self_intersections = count_self_intersections(&mesh, &seams, exemption_radius, &positions).count;
         let body_intersections = count_body_intersections(self.bodies.as_ref(), time, &mesh, &positions);
@@ -153,6 +168,7 @@ impl Prepared {
             body_intersections,
             largest_seam_gap: gap,
             seam_stalls,
+            tangles,
             checkpoints,
             measurement,
             frames,
