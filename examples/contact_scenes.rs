@@ -73,6 +73,7 @@ fn main() {
         tolerance: 1e-5,
         consecutive_steps: 10,
         max_steps,
+        moving_fraction: 0.0,
     };
     let start = Instant::now();
     let mut deepest: f64 = 0.0;

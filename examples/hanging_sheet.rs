@@ -53,6 +53,7 @@ fn main() {
         tolerance: 1e-5,
         consecutive_steps: 10,
         max_steps: 2000,
+        moving_fraction: 0.0,
     };
     let (mut times, mut iterations) = (Vec::new(), Vec::new());
     let report = |sim: &cloth::Simulation, times: &[f64], iterations: &[usize]| {

@@ -14,6 +14,7 @@ fn run_checked(scene: &mut Scene, max_steps: u64, thickness: f64) -> StopReason 
         tolerance: 1e-5,
         consecutive_steps: 10,
         max_steps,
+        moving_fraction: 0.0,
     };
     let bodies = scene.bodies.clone();
     let mut worst = Depth::default();
@@ -291,6 +292,7 @@ fn friction_holds_a_sheet_on_a_slope_only_when_mu_exceeds_tan_a() {
             tolerance: 0.0f64.max(1e-12),
             consecutive_steps: u32::MAX,
             max_steps: steps,
+            moving_fraction: 0.0,
         };
         scene.simulation.run_to_rest(&criteria).unwrap();
         assert!(scene.deepest_penetration() <= 0.1 * setup.thickness);

@@ -34,6 +34,7 @@ fn rest(h: f64, max_seconds: f64) -> RestCriteria {
         tolerance: 1e-3 * h,
         consecutive_steps: 20,
         max_steps: (max_seconds / h) as u64,
+        moving_fraction: 0.0,
     }
 }
 
@@ -177,6 +178,7 @@ fn a_run_says_why_it_stopped() {
             tolerance: 1e-9,
             consecutive_steps: 5,
             max_steps: 7,
+            moving_fraction: 0.0,
         })
         .unwrap();
     assert_eq!(
@@ -191,6 +193,7 @@ fn a_run_says_why_it_stopped() {
             tolerance: 1e-9,
             consecutive_steps: 5,
             max_steps: 3,
+            moving_fraction: 0.0,
         },
         |_, s| {
             seen.push(s.step);
@@ -206,6 +209,7 @@ fn a_run_says_why_it_stopped() {
                 tolerance: 1e-9,
                 consecutive_steps: 5,
                 max_steps: 100,
+                moving_fraction: 0.0,
             },
             |_, s| {
                 if s.step == 12 {

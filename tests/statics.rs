@@ -42,6 +42,7 @@ fn settle(sim: &mut Simulation) -> RestOutcome {
             tolerance: 1e-9,
             consecutive_steps: 20,
             max_steps: 5000,
+            moving_fraction: 0.0,
         })
         .unwrap();
     assert_eq!(out.reason, StopReason::AtRest, "{out:?}");

@@ -430,11 +430,13 @@ class Simulation:
         tolerance: float = 1e-5,
         consecutive_steps: int = 10,
         max_steps: int = 10000,
+        moving_fraction: float = 0.0,
         callback: _Callback | None = None,
         every: int = 1,
     ) -> RestOutcome:
-        """Steps until every particle moves less than ``tolerance`` m per step for
-        ``consecutive_steps`` steps, or ``max_steps``. ``callback`` sees a
+        """Steps until every particle (all but ``moving_fraction`` of them) moves less
+        than ``tolerance`` m per step for ``consecutive_steps`` steps, or ``max_steps``.
+        ``callback`` sees a
         :class:`Snapshot` every ``every`` steps; returning ``False`` stops the run
         (reason ``"stopped"``); an exception it raises stops the run and propagates.
         Ctrl-C stops it too (``KeyboardInterrupt``, the state kept)."""

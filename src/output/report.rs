@@ -76,18 +76,16 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
     if !report.seam_stalls.is_empty() {
         writeln!(
             out,
-            "\nSeams that stopped closing while sewn, and the pull raised to close them:\n\n\
-             | step | widest seam | gap, mm | pull (x full) |\n|---|---|---|---|"
+            "\nSeams that stopped closing while sewn, and how they were closed:\n\n\
+             | step | widest seam | gap, mm | then |\n|---|---|---|---|"
         )?;
         for s in &report.seam_stalls {
-            writeln!(
-                out,
-                "| {} | {} | {:.2} | {} |",
-                s.step,
-                s.seam,
-                1e3 * s.gap,
-                s.pull_factor
-            )?;
+            let then = if s.welded {
+                format!("welded where they stood (pull at {} times full)", s.pull_factor)
+            } else {
+                format!("pull raised to {} times full", s.pull_factor)
+            };
+            writeln!(out, "| {} | {} | {:.2} | {then} |", s.step, s.seam, 1e3 * s.gap)?;
         }
     }
     if !report.tangles.is_empty() {

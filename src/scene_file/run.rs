@@ -69,13 +69,18 @@ impl Prepared {
                     self.bodies.clone(),
                     &sewing,
                     &interrupt,
-                    |sim, s, _| rec.step(sim, s),
+                    |sim, s, progress| {
+                        // Kept as they come, for a sewing that does not finish.
+                        if progress.stalls.len() != seam_stalls.len() {
+                            seam_stalls = progress.stalls.to_vec();
+                        }
+                        rec.step(sim, s)
+                    },
                 );
                 match sewn {
                     Ok(sewn) => {
                         stages.push(rec.end("sewn"));
                         gap = Some(sewn.report.max_gap);
-                        seam_stalls.clone_from(&sewn.report.stalls);
                         rec.begin("draping", drape_settings.max_steps);
                         match drape(
                             &sewn,

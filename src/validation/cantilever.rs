@@ -80,6 +80,7 @@ impl Cantilever {
             tolerance: 1e-9,
             consecutive_steps: 20,
             max_steps: 5000,
+            moving_fraction: 0.0,
         };
         let steps = settle(&mut sim, &criteria, "cantilever")?;
         let (drop, reach) = tip(sim.positions(), grid);

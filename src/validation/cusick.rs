@@ -55,6 +55,7 @@ impl CusickTest {
                 tolerance: 1e-6,
                 consecutive_steps: 20,
                 max_steps: 4000,
+                moving_fraction: 0.0,
             },
         }
     }

@@ -42,6 +42,7 @@ impl HangingStrip {
             tolerance: 1e-8,
             consecutive_steps: 20,
             max_steps: 20_000,
+            moving_fraction: 0.0,
         };
         let steps = settle(&mut sim, &criteria, "hanging strip")?;
         let x = sim.positions();

@@ -38,6 +38,7 @@ fn a_strip_of_two_fabrics_stretches_as_each_of_its_cells() {
             tolerance: 1e-9,
             consecutive_steps: 10,
             max_steps: 20_000,
+            moving_fraction: 0.0,
         })
         .unwrap();
     assert_eq!(outcome.reason, cloth_core::StopReason::AtRest);

@@ -43,7 +43,9 @@ pub fn sim(py: Python<'_>, e: &SimError) -> PyErr {
 /// close and divergences are failed runs.
 pub fn garment(py: Python<'_>, e: &GarmentError) -> PyErr {
     let step = match e {
-        GarmentError::NotSewn { steps, .. } | GarmentError::Stopped { steps, .. } => Some(*steps),
+        GarmentError::NotSewn { steps, .. }
+        | GarmentError::Stalled { steps, .. }
+        | GarmentError::Stopped { steps, .. } => Some(*steps),
         GarmentError::Sim { source, .. } => source.step(),
         _ => None,
     };

@@ -379,18 +379,20 @@ impl Simulation {
         result.map(StepStats::from).map_err(|e| sim(py, &e))
     }
 
-    /// Steps until every particle moves less than `tolerance` m per step for
-    /// `consecutive_steps` steps, or `max_steps`. `callback` sees a Snapshot every `every`
-    /// steps; returning False stops the run (reason "stopped"); an exception it raises
-    /// stops the run and propagates. Ctrl-C stops it too (KeyboardInterrupt, the state
-    /// kept).
-    #[pyo3(signature = (*, tolerance = 1e-5, consecutive_steps = 10, max_steps = 10000, callback = None, every = 1))]
+    /// Steps until every particle (all but `moving_fraction` of them) moves less than
+    /// `tolerance` m per step for `consecutive_steps` steps, or `max_steps`. `callback`
+    /// sees a Snapshot every `every` steps; returning False stops the run (reason
+    /// "stopped"); an exception it raises stops the run and propagates. Ctrl-C stops it
+    /// too (KeyboardInterrupt, the state kept).
+    #[pyo3(signature = (*, tolerance = 1e-5, consecutive_steps = 10, max_steps = 10000, moving_fraction = 0.0, callback = None, every = 1))]
+    #[allow(clippy::too_many_arguments)]
     fn run_to_rest(
         &mut self,
         py: Python<'_>,
         tolerance: f64,
         consecutive_steps: u32,
         max_steps: u64,
+        moving_fraction: f64,
         callback: Option<Py<PyAny>>,
         every: u64,
     ) -> PyResult<RestOutcome> {
@@ -398,6 +400,7 @@ impl Simulation {
             tolerance,
             consecutive_steps,
             max_steps,
+            moving_fraction,
         };
         criteria.validate().map_err(input)?;
         let mut watcher = Watcher::new(callback, every)?;

@@ -703,6 +703,7 @@ impl Simulation {
     ) -> Result<RestOutcome, SimError> {
         criteria.validate()?;
         let accuracy = 0.01 * criteria.tolerance / self.settings.time_step;
+        let allowed = (criteria.moving_fraction * self.x.len() as f64).floor() as usize;
         let mut calm = 0u32;
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
@@ -725,7 +726,7 @@ impl Simulation {
                     last,
                 });
             }
-            calm = if last.max_displacement < criteria.tolerance {
+            calm = if self.moving_particles(criteria.tolerance) <= allowed {
                 calm + 1
             } else {
                 0
@@ -747,6 +748,16 @@ impl Simulation {
 }
 
 impl Simulation {
+    /// How many particles moved `tolerance` or more over the last step.
+    fn moving_particles(&self, tolerance: f64) -> usize {
+        let t2 = tolerance * tolerance;
+        self.x
+            .iter()
+            .zip(&self.ws.x_start)
+            .filter(|(a, b)| (*a - *b).norm_squared() >= t2)
+            .count()
+    }
+
     /// The step's constraints: the pins, then the active contacts (a pin wins).
     pub(super) fn refill_filter(&mut self, h: f64) -> Result<(), String> {
         let filter = &mut self.ws.filter;

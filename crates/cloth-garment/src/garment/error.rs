@@ -55,6 +55,19 @@ pub enum GarmentError {
         gap_mm: f64,
         tolerance_mm: f64,
     },
+    /// The seams stopped closing with the pull at its strongest, too far apart to weld.
+    #[error(
+        "the seams stopped closing at step {steps}: {seam} is still {gap_mm:.1} mm apart with the \
+         pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm): the \
+         garment is tighter there than the body it is sewn round, or caught on it"
+    )]
+    Stalled {
+        steps: u64,
+        seam: String,
+        gap_mm: f64,
+        pull_factor: f64,
+        weld_mm: f64,
+    },
     /// The observer asked to stop (a user's interrupt, say).
     #[error("{stage} stopped at step {steps}")]
     Stopped { stage: &'static str, steps: u64 },

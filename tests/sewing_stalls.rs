@@ -1,0 +1,128 @@
+//! Seams that stall: a tube sewn round a post thicker than it fits. The pull is raised
+//! until the cloth gives; held open against the strongest pull, the seams are welded where
+//! they stand if near enough, and the sewing fails naming the seam if not.
+
+use cloth::collide::{Bodies, Body, TriSurface};
+use cloth::garment::sewing::{sew, SewingSettings, Sewn, FORCED_WELD};
+use cloth::garment::{GarmentBuilder, GarmentError, Pattern};
+use cloth::presets::FabricLibrary;
+use cloth::Interrupt;
+use std::ops::ControlFlow;
+use std::sync::Arc;
+
+/// The post's radius, m.
+const RADIUS: f64 = 0.06;
+
+/// A tube of two 10 cm tall panels, each `width` cm round, wrapped 2 cm clear of the post.
+fn tube(width: f64) -> Pattern {
+    let r = 100.0 * RADIUS + 2.0;
+    let half = width / 2.0;
+    let text = format!(
+        r#"
+units = "cm"
+[[panels]]
+name = "front"
+outline = [
+    {{ start = [-{half}, 0], name = "hem" }},
+    {{ start = [{half}, 0], name = "right" }},
+    {{ start = [{half}, 10], name = "top" }},
+    {{ start = [-{half}, 10], name = "left" }},
+]
+placement = {{ rotation = [90, 0, 0], translation = [0, -{r}, -5], wrap = {{ radius = {r} }} }}
+
+[[panels]]
+name = "back"
+outline = [
+    {{ start = [-{half}, 0], name = "hem" }},
+    {{ start = [{half}, 0], name = "right" }},
+    {{ start = [{half}, 10], name = "top" }},
+    {{ start = [-{half}, 10], name = "left" }},
+]
+placement = {{ rotation = [90, 0, 180], translation = [0, {r}, -5], wrap = {{ radius = {r} }} }}
+
+[[seams]]
+a = {{ panel = "front", edge = "right" }}
+b = {{ panel = "back", edge = "left" }}
+
+[[seams]]
+a = {{ panel = "front", edge = "left" }}
+b = {{ panel = "back", edge = "right" }}
+"#
+    );
+    Pattern::from_toml_str(&text, "tube.toml").unwrap()
+}
+
+/// Sews a tube `fit` times the post's girth (at the cloth's contact distance) round it.
+fn sew_tube(fit: f64) -> Result<Sewn, GarmentError> {
+    let post = Body::new("post", TriSurface::cylinder(RADIUS, 0.15, 64).unwrap());
+    let thickness = post.thickness();
+    let bodies = Arc::new(Bodies::new(vec![post]));
+    let girth = std::f64::consts::TAU * (RADIUS + thickness);
+    let garment = GarmentBuilder::new(tube(100.0 * fit * girth / 2.0))
+        .edge_length(0.02)
+        .build()
+        .unwrap();
+    let fabric = FabricLibrary::builtin().fabric("cotton_poplin").unwrap();
+    sew(
+        &garment,
+        &[fabric.clone(), fabric],
+        bodies,
+        &SewingSettings::default(),
+        &Interrupt::default(),
+        |_, _, _| ControlFlow::Continue(()),
+    )
+}
+
+#[test]
+fn a_tube_a_little_tight_closes_once_the_pull_is_raised() {
+    // 8 % short of the post: the pull at its first strength leaves the seams open, and
+    // raised it stretches the cloth until they close.
+    let sewn = sew_tube(0.92).unwrap();
+    let stalls = &sewn.report.stalls;
+    assert!(!stalls.is_empty(), "no stall");
+    assert!(stalls.iter().all(|s| !s.welded), "{stalls:?}");
+    assert!(stalls
+        .windows(2)
+        .all(|w| w[1].pull_factor > w[0].pull_factor && w[1].gap < w[0].gap));
+    assert!(sewn.report.max_gap < SewingSettings::default().gap_tolerance);
+}
+
+#[test]
+fn a_tube_too_tight_to_close_is_welded_where_it_stalls() {
+    // 15 % short: the cloth stiffens past what even the strongest pull stretches it by,
+    // and the seams stop a few millimetres open: welded there.
+    let sewn = sew_tube(0.85).unwrap();
+    let last = sewn.report.stalls.last().expect("stalled");
+    assert!(last.welded, "{last:?}");
+    assert_eq!(last.pull_factor, 1024.0);
+    assert!(last.seam.contains("panel 'front'"), "{}", last.seam);
+    // Open past the tolerance, but by less than the weld allows (a fraction of the pairs'
+    // spacing, at most the edge length).
+    let gap = sewn.report.max_gap;
+    assert!(
+        gap > SewingSettings::default().gap_tolerance && gap <= FORCED_WELD * 0.02,
+        "{gap}"
+    );
+}
+
+#[test]
+fn a_tube_far_too_tight_fails_naming_the_seam() {
+    // 30 % short: still centimetres open under the strongest pull, too far to weld.
+    match sew_tube(0.7) {
+        Err(GarmentError::Stalled {
+            seam,
+            gap_mm,
+            pull_factor,
+            weld_mm,
+            ..
+        }) => {
+            assert!(
+                seam.contains("panel 'front'") && seam.contains("panel 'back'"),
+                "{seam}"
+            );
+            assert!(gap_mm > weld_mm, "{gap_mm} {weld_mm}");
+            assert_eq!(pull_factor, 1024.0);
+        }
+        other => panic!("{:?}", other.map(|s| s.report)),
+    }
+}
