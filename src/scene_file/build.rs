@@ -16,6 +16,10 @@ use cloth_core::{Fabric, GridBuilder, GridShape, Pin, SimulationBuilder, Vec3};
 use std::path::Path;
 use std::sync::Arc;
 
+/// How far apart panels overlapping in one plane are layered, m: several times the
+/// contact distance of any fabric's layers, a fraction of a cell.
+const LAYER_GAP: f64 = 0.002;
+
 /// A scene ready to run.
 pub struct Prepared {
     pub name: String,
@@ -124,6 +128,12 @@ impl SceneFile {
                             file: path.display().to_string(),
                             source,
                         })?;
+                warnings.extend(
+                    garment
+                        .layer_overlapping(LAYER_GAP)
+                        .into_iter()
+                        .map(SceneWarning::Layers),
+                );
                 warnings.extend(
                     garment
                         .move_out_of(&bodies)

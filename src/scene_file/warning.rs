@@ -1,7 +1,7 @@
 //! What a scene loads with that the user should know: the run goes on.
 
 use crate::collide::SurfaceDefect;
-use crate::garment::PlacementWarning;
+use crate::garment::{Layers, PlacementWarning};
 
 /// One thing found while preparing a scene, with what was done about it.
 #[derive(Debug, Clone, PartialEq)]
@@ -10,6 +10,8 @@ pub enum SceneWarning {
     Body { body: String, defect: SurfaceDefect },
     /// A panel starts inside a body.
     Placement(PlacementWarning),
+    /// Panels overlap in one plane: they were set apart into layers.
+    Layers(Layers),
     /// A seam's sides differ in length by more than ease: the longer is gathered.
     Gather(crate::garment::Gather),
 }
@@ -19,6 +21,7 @@ impl std::fmt::Display for SceneWarning {
         match self {
             Self::Body { body, defect } => write!(f, "{body}: {defect}"),
             Self::Placement(w) => w.fmt(f),
+            Self::Layers(l) => l.fmt(f),
             Self::Gather(g) => g.fmt(f),
         }
     }

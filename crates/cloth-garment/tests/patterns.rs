@@ -481,3 +481,56 @@ fn a_panel_through_a_thin_part_of_the_body_passes_through_it_instead() {
         .collect();
     assert_eq!(garment.passing[0].members, front.into_iter().collect::<Vec<_>>());
 }
+
+#[test]
+fn panels_overlapping_in_one_plane_are_layered_the_higher_outside() {
+    // Two tiers of a skirt front laid flat in one plane, the upper overlapping the lower
+    // by 5 cm, and a back panel in its own plane.
+    let text = r#"
+units = "cm"
+[[panels]]
+name = "upper"
+outline = [{ start = [-20, 0] }, { start = [20, 0] }, { start = [20, 20] }, { start = [-20, 20] }]
+placement = { rotation = [90, 0, 0], translation = [0, -20, 80] }
+[[panels]]
+name = "lower"
+outline = [{ start = [-20, 0] }, { start = [20, 0] }, { start = [20, 20] }, { start = [-20, 20] }]
+placement = { rotation = [90, 0, 0], translation = [0, -20, 65] }
+[[panels]]
+name = "back"
+outline = [{ start = [-20, 0] }, { start = [20, 0] }, { start = [20, 35] }, { start = [-20, 35] }]
+placement = { rotation = [90, 0, 180], translation = [0, 20, 65] }
+[[seams]]
+a = { panel = "upper", edge = 0 }
+b = { panel = "lower", edge = 2 }
+"#;
+    let pattern = Pattern::from_toml_str(text, "tiers.toml").unwrap();
+    let mut garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
+    let before = garment.mesh.positions().to_vec();
+    let layered = garment.layer_overlapping(0.002);
+    assert_eq!(layered.len(), 1, "{layered:?}");
+    assert_eq!(layered[0].panels, ["upper", "lower"]);
+    assert!(
+        layered[0].to_string().contains("'upper', 'lower' overlap"),
+        "{}",
+        layered[0]
+    );
+    // The upper tier stays; the lower goes 2 mm in, behind it (the front faces -y); the back
+    // does not move.
+    for (t, tri) in garment.mesh.triangles().iter().enumerate() {
+        for &i in tri {
+            let shift = garment.mesh.positions()[i] - before[i];
+            let expected = match garment.triangle_panel[t] {
+                1 => cloth_core::Vec3::new(0.0, 0.002, 0.0),
+                _ => cloth_core::Vec3::zeros(),
+            };
+            assert!(
+                (shift - expected).norm() < 1e-12,
+                "panel {}: {shift:?}",
+                garment.triangle_panel[t]
+            );
+        }
+    }
+    // Layered once, they no longer overlap in one plane.
+    assert!(garment.layer_overlapping(0.002).is_empty());
+}

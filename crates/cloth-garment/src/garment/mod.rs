@@ -3,11 +3,13 @@
 
 mod error;
 mod gathering;
+mod layers;
 mod placement_check;
 mod size;
 mod weld;
 
 pub use error::GarmentError;
+pub use layers::Layers;
 pub use placement_check::PlacementWarning;
 pub use size::{triangles_in, DEFAULT_MAX_TRIANGLES};
 pub use weld::Welded;
@@ -251,6 +253,36 @@ impl Garment {
             shares.extend((0..n).map(|k| side(k, 0).min(side(k, 1))));
         }
         shares
+    }
+
+    /// The particles of each panel (before sewing, each is of one panel).
+    pub(crate) fn panel_members(&self) -> Vec<Vec<usize>> {
+        let mut members = vec![Vec::new(); self.panel_names.len()];
+        let mut seen = vec![false; self.mesh.vertex_count()];
+        for (t, tri) in self.mesh.triangles().iter().enumerate() {
+            for &i in tri {
+                if !std::mem::replace(&mut seen[i], true) {
+                    members[self.triangle_panel[t]].push(i);
+                }
+            }
+        }
+        members
+    }
+
+    /// Each panel's outward unit normal. Panels face out of the garment (+z of their
+    /// frames), and their triangles are wound counter-clockwise seen from the front: the
+    /// area-weighted normal points out.
+    pub(crate) fn panel_facing(&self) -> Vec<Vec3> {
+        let x = self.mesh.positions();
+        let mut facing = vec![Vec3::zeros(); self.panel_names.len()];
+        for (t, tri) in self.mesh.triangles().iter().enumerate() {
+            let [a, b, c] = tri.map(|i| x[i]);
+            facing[self.triangle_panel[t]] += (b - a).cross(&(c - a));
+        }
+        facing
+            .iter()
+            .map(|n| n.try_normalize(1e-12).unwrap_or(Vec3::x()))
+            .collect()
     }
 
     /// The seam with the widest gap at `positions`, and that gap, m (checked every

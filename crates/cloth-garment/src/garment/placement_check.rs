@@ -145,36 +145,6 @@ impl Garment {
         warnings
     }
 
-    /// The particles of each panel (before sewing, each is of one panel).
-    fn panel_members(&self) -> Vec<Vec<usize>> {
-        let mut members = vec![Vec::new(); self.panel_names.len()];
-        let mut seen = vec![false; self.mesh.vertex_count()];
-        for (t, tri) in self.mesh.triangles().iter().enumerate() {
-            for &i in tri {
-                if !std::mem::replace(&mut seen[i], true) {
-                    members[self.triangle_panel[t]].push(i);
-                }
-            }
-        }
-        members
-    }
-
-    /// Each panel's outward unit normal. Panels face out of the garment (+z of their
-    /// frames), and their triangles are wound counter-clockwise seen from the front: the
-    /// area-weighted normal points out.
-    fn panel_facing(&self) -> Vec<Vec3> {
-        let x = self.mesh.positions();
-        let mut facing = vec![Vec3::zeros(); self.panel_names.len()];
-        for (t, tri) in self.mesh.triangles().iter().enumerate() {
-            let [a, b, c] = tri.map(|i| x[i]);
-            facing[self.triangle_panel[t]] += (b - a).cross(&(c - a));
-        }
-        facing
-            .iter()
-            .map(|n| n.try_normalize(1e-12).unwrap_or(Vec3::x()))
-            .collect()
-    }
-
     /// The warning for `panel` (its particles `ids`), if any of it is inside a body.
     fn placement_warning(
         &self,

@@ -7,7 +7,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SewingSettings {
-    /// Time step, s.
+    /// Time step, s. The seams close no faster than the closing speed, 12 mm a step at a
+    /// 25th of a second, under a cell: the step of 1/50 s took twice the steps to the same
+    /// sewn garment (rand_1_014: 109 steps against 56).
     pub time_step: f64,
     /// The seams are welded when every pair is closer than this, m.
     pub gap_tolerance: f64,
@@ -47,7 +49,7 @@ pub struct SewingSettings {
 impl Default for SewingSettings {
     fn default() -> Self {
         Self {
-            time_step: 1.0 / 50.0,
+            time_step: 1.0 / 25.0,
             gap_tolerance: 1e-3,
             max_steps: 3000,
             pull_strain: 0.01,
