@@ -1,0 +1,114 @@
+//! GarmentCode's own designs, sewn and draped on its mean body as they come (y-up, panels
+//! placed round the body by its sampler, some through its hands or laid over one another,
+//! gathered and with millimetre edges), at a coarse edge length so the suite stays quick:
+//! each ends at rest, passes through neither itself nor the body, barely stretches, and
+//! hangs on the body where it belongs, centred, not off one side.
+
+use cloth::scene_file::{RunObserver, RunOutcome, SceneFile};
+use cloth::{Simulation, StepStats, Vec3};
+use std::ops::ControlFlow;
+use std::path::Path;
+
+struct Quiet;
+
+impl RunObserver for Quiet {
+    fn stage(&mut self, _: &'static str, _: u64) {}
+    fn step(&mut self, _: &'static str, _: &Simulation, _: &StepStats) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+}
+
+/// Where a design's top edge should come to rest on the body, m above its feet.
+struct Fit {
+    design: &'static str,
+    top: std::ops::Range<f64>,
+}
+
+/// Sews and drapes `fit.design` at 3 cm, checks it and returns the warnings.
+fn drape(fit: &Fit) -> Vec<String> {
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
+    let text = format!(
+        "name = \"{0}\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\nup_axis = \"y\"\n\
+         [cloth.garment]\nedge_length = 0.03\npattern = \"patterns/{0}.json\"\n\
+         [fabric]\npreset = \"cotton_poplin\"\n",
+        fit.design
+    );
+    let scene = SceneFile::from_toml_str(&text, "scene.toml").unwrap();
+    let prepared = scene.prepare("scene.toml", &assets).unwrap();
+    let warnings: Vec<String> = prepared.warnings.iter().map(ToString::to_string).collect();
+    let result = prepared.run(&scene, None, &mut Quiet).unwrap();
+    let r = &result.report;
+    let s = &r.strain;
+    println!(
+        "{}: {} particles, sewn in {} steps, draped in {} ({}); {} self and {} body intersections; p99 warp {:.2} %, weft {:.2} %",
+        fit.design,
+        r.particles,
+        r.stages[0].steps,
+        r.stages.get(1).map_or(0, |s| s.steps),
+        r.stages.last().unwrap().ended,
+        r.self_intersections,
+        r.body_intersections,
+        s.p99_warp,
+        s.p99_weft
+    );
+    assert_eq!(r.outcome, RunOutcome::Finished, "{}", fit.design);
+    assert_eq!(r.stages[1].ended, "at_rest", "{}", fit.design);
+    assert_eq!(r.self_intersections, 0, "{}", fit.design);
+    assert_eq!(r.body_intersections, 0, "{}", fit.design);
+    assert_eq!(r.deepest_penetration, 0.0, "{}", fit.design);
+    assert!(s.p99_warp < 5.0 && s.p99_weft < 5.0, "{}: {s:?}", fit.design);
+    // On the body where it belongs, centred on its midline (x = 0 in GarmentCode's frame,
+    // the body's left-right symmetry plane), neither slid down nor off one side.
+    let x = &result.positions;
+    let top = x.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    assert!(fit.top.contains(&top), "{}: top at {top}", fit.design);
+    let centroid = x.iter().sum::<Vec3>() / x.len() as f64;
+    assert!(centroid.x.abs() < 0.02, "{}: centroid {centroid}", fit.design);
+    let (left, right) = x
+        .iter()
+        .fold((0.0f64, 0.0f64), |(l, r), p| (l.min(p.x), r.max(p.x)));
+    assert!(
+        (left + right).abs() < 0.04,
+        "{}: from x = {left} to {right}",
+        fit.design
+    );
+    warnings
+}
+
+#[test]
+fn a_godet_skirt_placed_through_the_hands_passes_them_and_hangs_from_the_waist() {
+    let warnings = drape(&Fit {
+        design: "rand_1_018",
+        top: 0.98..1.10,
+    });
+    assert_eq!(
+        warnings
+            .iter()
+            .filter(|w| w.contains("passes through the body"))
+            .count(),
+        2,
+        "{warnings:?}"
+    );
+}
+
+#[test]
+fn a_top_with_its_collar_placed_in_the_neck_is_moved_out_and_sits_on_the_shoulders() {
+    let warnings = drape(&Fit {
+        design: "rand_1_057",
+        top: 1.44..1.56,
+    });
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.contains("collar") && w.contains("moved")),
+        "{warnings:?}"
+    );
+}
+
+#[test]
+fn trousers_gathered_into_their_waistband_hang_from_the_waist() {
+    drape(&Fit {
+        design: "rand_1_002",
+        top: 1.05..1.18,
+    });
+}
