@@ -453,7 +453,7 @@ fn a_fast_sheet_does_not_pass_through_a_thin_plate() {
 fn sheet_through_a_hand(pass: bool) -> (Vec<Vec3>, Simulation, Arc<cloth::collide::Bodies>) {
     use cloth::collide::{Body, TriSurface};
     use cloth::{Fabric, GridBuilder, PassThrough, SimulationBuilder, SolverSettings};
-    let hand = TriSurface::cuboid(Vec3::new(0.015, 0.04, 0.08)).unwrap();
+    let hand = TriSurface::cuboid(Vec3::new(0.015, 0.04, 0.045)).unwrap();
     let bodies = Arc::new(Bodies::new(vec![Body::new("hand", hand)]));
     let mesh = GridBuilder::new(31, 31)
         .size(0.3, 0.3)
@@ -471,6 +471,7 @@ fn sheet_through_a_hand(pass: bool) -> (Vec<Vec3>, Simulation, Arc<cloth::collid
     let pieces = if pass {
         vec![PassThrough {
             members: (0..n).collect(),
+            until_out: true,
         }]
     } else {
         Vec::new()

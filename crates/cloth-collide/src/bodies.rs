@@ -1,5 +1,6 @@
 //! A set of bodies: what the solver collides the cloth with.
 
+use crate::body::Parts;
 use crate::Body;
 use cloth_core::{Collider, Proximity, SharpFeature, SurfacePoint, Vec3};
 use nalgebra::Point3;
@@ -46,9 +47,13 @@ impl Bodies {
     }
 }
 
-impl Collider for Bodies {
-    fn sweep(
+impl Bodies {
+    /// The nearest entry or surface point over `parts` of every body (see
+    /// [`Collider::sweep`]).
+    #[allow(clippy::too_many_arguments)]
+    fn sweep_parts(
         &self,
+        parts: Parts,
         t0: f64,
         x0: &Vec3,
         t1: f64,
@@ -59,7 +64,7 @@ impl Collider for Bodies {
         let mut best: Option<(SurfacePoint, f64)> = None;
         for (k, body) in self.bodies.iter().enumerate() {
             let d = body.thickness();
-            let Some(hit) = body.sweep(t0, x0, t1, x1, start_gap_lower_bound + d, d + reach) else {
+            let Some(hit) = body.sweep(parts, t0, x0, t1, x1, start_gap_lower_bound + d, d + reach) else {
                 continue;
             };
             // The earliest entry wins; among plain proximities, the smallest gap.
@@ -89,6 +94,32 @@ impl Collider for Bodies {
                 gap_lower_bound: reach,
             },
         }
+    }
+}
+
+impl Collider for Bodies {
+    fn sweep(
+        &self,
+        t0: f64,
+        x0: &Vec3,
+        t1: f64,
+        x1: &Vec3,
+        start_gap_lower_bound: f64,
+        reach: f64,
+    ) -> Proximity {
+        self.sweep_parts(Parts::All, t0, x0, t1, x1, start_gap_lower_bound, reach)
+    }
+
+    fn sweep_past_thin_parts(
+        &self,
+        t0: f64,
+        x0: &Vec3,
+        t1: f64,
+        x1: &Vec3,
+        start_gap_lower_bound: f64,
+        reach: f64,
+    ) -> Proximity {
+        self.sweep_parts(Parts::Thick, t0, x0, t1, x1, start_gap_lower_bound, reach)
     }
 
     fn motion_bound(&self, t0: f64, t1: f64) -> f64 {

@@ -1,21 +1,20 @@
-//! A rigid body: a surface, its parry mesh and BVH (and its winding numbers when it is not
-//! watertight), how it moves, and its contact properties.
+//! A rigid body: a surface, the contact surfaces over it (all of it the cloth can reach,
+//! and its thick parts alone), how it moves, and its contact properties.
 
-use crate::convert::{from_parry, to_parry};
-use crate::surface::{SharpFeature as SurfaceFeature, TriSurface, WindingTree};
+use crate::contact_mesh::{ContactMesh, LocalPoint};
+use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
 use crate::Motion;
-use cloth_core::self_contact::geometry::segment_crosses_triangle;
 use cloth_core::Vec3;
 use nalgebra::{Isometry3, Point3};
-use parry3d_f64::bounding_volume::Aabb;
-use parry3d_f64::query::{PointQuery, PointQueryWithLocation, Ray, RayCast};
-use parry3d_f64::shape::{TriMesh, TriMeshFlags, TrianglePointLocation};
-use std::collections::HashSet;
 
 /// Default contact thickness, m: a few millimetres, about a fabric's thickness.
 pub const DEFAULT_THICKNESS: f64 = 0.003;
 /// Default fold angle above which an edge counts as sharp, rad (30 degrees).
 pub const DEFAULT_SHARP_ANGLE: f64 = std::f64::consts::PI / 6.0;
+/// Where the body is thinner than this under its surface (along the inward normal), m,
+/// it is a thin part: a hand, a forearm, an ear, a foot, under a hand's width. The trunk,
+/// the head, the thighs and the neck are thicker.
+pub const THIN_PART: f64 = 0.1;
 
 fn finite<'a>(values: impl IntoIterator<Item = &'a f64>) -> bool {
     values.into_iter().all(|c| c.is_finite())
@@ -37,19 +36,36 @@ pub struct Body {
     name: String,
     surface: TriSurface,
     /// The surface's triangles the cloth can reach (those inside other parts left out).
-    mesh: TriMesh,
-    /// Inside/outside for a surface that is not watertight; `None`: the pseudonormals of
-    /// `mesh` answer it.
-    winding: Option<WindingTree>,
+    full: ContactMesh,
+    /// Those of them over the body's thick parts, for cloth passing through its thin parts.
+    thick: Thick,
     sharp: Vec<SurfaceFeature>,
     sharp_angle: f64,
-    shading: Shading,
     motion: Motion,
     thickness: f64,
     /// `None`: the fabric's own coefficient applies.
     friction: Option<f64>,
     /// Largest distance of a surface vertex from the local origin.
     radius: f64,
+}
+
+/// The body as cloth passing through its thin parts meets it.
+#[derive(Debug, Clone)]
+enum Thick {
+    /// It has no thin part.
+    Whole,
+    /// Its thick parts (boxed: a body without thin parts carries no second mesh).
+    Parts(Box<ContactMesh>),
+    /// It is thin all over (a plate).
+    Nothing,
+}
+
+/// Which of a body a query meets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Parts {
+    All,
+    /// Its thick parts only (see [`THIN_PART`]).
+    Thick,
 }
 
 /// Where a path or a point stands relative to one body, in the world frame.
@@ -66,7 +82,6 @@ pub(crate) struct BodyPoint {
 impl Body {
     /// A static body at the identity pose with the default contact properties.
     pub fn new(name: impl Into<String>, surface: TriSurface) -> Self {
-        let vertices = surface.vertices().iter().map(to_parry).collect();
         let mut reachable: Vec<[u32; 3]> = (0..surface.triangles().len())
             .filter(|&t| !surface.is_buried(t))
             .map(|t| surface.triangles()[t])
@@ -76,29 +91,45 @@ impl Body {
         if reachable.is_empty() {
             reachable = surface.triangles().to_vec();
         }
-        // A watertight surface's pseudonormals give a sound inside/outside answer; any other
-        // asks its winding number.
-        let (flags, winding) = if surface.is_watertight() {
-            (TriMeshFlags::ORIENTED, None)
-        } else {
-            (
-                TriMeshFlags::empty(),
-                Some(WindingTree::new(surface.vertices(), surface.triangles())),
-            )
-        };
-        let mesh =
-            TriMesh::with_flags(vertices, reachable.clone(), flags).expect("a TriSurface has triangles");
         let radius = surface.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max);
-        let sharp = reachable_features(&surface, &reachable, DEFAULT_SHARP_ANGLE);
-        let shading = Shading::new(surface.vertices(), &reachable, &sharp, DEFAULT_SHARP_ANGLE);
+        let angle = DEFAULT_SHARP_ANGLE;
+        let sharp = reachable_features(&surface, &reachable, angle);
+        let full = ContactMesh::new(
+            surface.vertices(),
+            reachable,
+            surface.is_watertight(),
+            &sharp,
+            angle,
+        );
+        let chords = full.chords(THIN_PART);
+        let thick_triangles: Vec<[u32; 3]> = full
+            .triangles()
+            .iter()
+            .zip(&chords)
+            .filter(|(_, &c)| c >= THIN_PART)
+            .map(|(t, _)| *t)
+            .collect();
+        let thick = if thick_triangles.len() == full.triangles().len() {
+            Thick::Whole
+        } else if thick_triangles.is_empty() {
+            Thick::Nothing
+        } else {
+            // Open where the thin parts were: its winding number tells inside from outside.
+            Thick::Parts(Box::new(ContactMesh::new(
+                surface.vertices(),
+                thick_triangles,
+                false,
+                &sharp,
+                angle,
+            )))
+        };
         Self {
             name: name.into(),
             surface,
-            mesh,
-            winding,
+            full,
+            thick,
             sharp,
-            sharp_angle: DEFAULT_SHARP_ANGLE,
-            shading,
+            sharp_angle: angle,
             motion: Motion::default(),
             thickness: DEFAULT_THICKNESS,
             friction: None,
@@ -190,9 +221,11 @@ impl Body {
     pub fn with_sharp_angle(mut self, angle: f64) -> Result<Self, BodyError> {
         self.check(angle > 0.0, "sharp_angle", angle, "a positive angle in radians")?;
         self.sharp_angle = angle;
-        let reachable: Vec<[u32; 3]> = self.mesh.indices().to_vec();
-        self.sharp = reachable_features(&self.surface, &reachable, angle);
-        self.shading = Shading::new(self.surface.vertices(), &reachable, &self.sharp, angle);
+        self.sharp = reachable_features(&self.surface, self.full.triangles(), angle);
+        self.full.reshade(self.surface.vertices(), &self.sharp, angle);
+        if let Thick::Parts(thick) = &mut self.thick {
+            thick.reshade(self.surface.vertices(), &self.sharp, angle);
+        }
         Ok(self)
     }
 
@@ -236,45 +269,33 @@ impl Body {
             pose.inverse_transform_point(&Point3::from(*a)).coords,
             pose.inverse_transform_point(&Point3::from(*b)).coords,
         );
-        let bounds = Aabb::new(to_parry(&p.inf(&q)), to_parry(&p.sup(&q)));
-        self.mesh
-            .bvh()
-            .intersect_aabb(&bounds)
-            .filter(|&k| {
-                let tri = self.mesh.triangle(k);
-                segment_crosses_triangle(&p, &q, &[tri.a, tri.b, tri.c].map(from_parry))
-            })
-            .count()
+        self.full.segment_crossings(&p, &q)
     }
 
     /// Signed distance of `x` from the surface at time `t` (negative inside), with no
     /// distance limit.
     pub fn signed_distance(&self, t: f64, x: &Vec3) -> f64 {
         let p = self.pose(t).inverse_transform_point(&Point3::from(*x)).coords;
-        let proj = self.mesh.project_local_point(to_parry(&p), false);
-        let distance = (p - from_parry(proj.point)).norm();
-        if self.inside(&p, proj.is_inside) {
-            -distance
-        } else {
-            distance
+        self.full.signed_distance(&p)
+    }
+
+    /// The fraction of the body's reachable surface over thin parts (see [`THIN_PART`]).
+    pub fn thin_fraction(&self) -> f64 {
+        match &self.thick {
+            Thick::Whole => 0.0,
+            Thick::Nothing => 1.0,
+            Thick::Parts(thick) => 1.0 - thick.triangles().len() as f64 / self.full.triangles().len() as f64,
         }
     }
 
-    /// Whether the local point `p` is inside: the winding number's answer, or else the
-    /// pseudonormals' (`pseudo`, from the projection onto the mesh).
-    fn inside(&self, p: &Vec3, pseudo: bool) -> bool {
-        match &self.winding {
-            Some(tree) => tree.winding_number(p) >= 0.5,
-            None => pseudo,
-        }
-    }
-
-    /// The first entry into the body along the straight path from `x0` (at `t0`) to `x1`
-    /// (at `t1`), relative to the body; else the nearest surface point to `x1` within
-    /// `max_distance`. The path test is skipped when the path is shorter than
+    /// The first entry into the body (its `parts`) along the straight path from `x0` (at
+    /// `t0`) to `x1` (at `t1`), relative to the body; else the nearest surface point to
+    /// `x1` within `max_distance`. The path test is skipped when the path is shorter than
     /// `min_start_distance`, a lower bound on the distance of `x0`.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn sweep(
         &self,
+        parts: Parts,
         t0: f64,
         x0: &Vec3,
         t1: f64,
@@ -282,6 +303,11 @@ impl Body {
         min_start_distance: f64,
         max_distance: f64,
     ) -> Option<BodyPoint> {
+        let surface = match (parts, &self.thick) {
+            (Parts::All, _) | (Parts::Thick, Thick::Whole) => &self.full,
+            (Parts::Thick, Thick::Parts(thick)) => thick,
+            (Parts::Thick, Thick::Nothing) => return None,
+        };
         let pose1 = self.pose(t1);
         let p1 = pose1.inverse_transform_point(&Point3::from(*x1)).coords;
         let p0 = if t0 == t1 {
@@ -289,53 +315,19 @@ impl Body {
         } else {
             self.pose(t0).inverse_transform_point(&Point3::from(*x0)).coords
         };
-        let path = p1 - p0;
-        let length = path.norm();
-        if length > 0.0 && length >= min_start_distance {
-            let ray = Ray::new(to_parry(&p0), to_parry(&path));
-            if let Some(hit) = self.mesh.cast_local_ray_and_get_normal(&ray, 1.0, false) {
-                let n = from_parry(hit.normal).normalize();
-                // A hit from inside is the particle leaving (it started inside): not an entry.
-                if n.dot(&path) < 0.0 {
-                    let entry = p0 + hit.time_of_impact * path;
-                    let (_, (triangle, location)) = self
-                        .mesh
-                        .project_local_point_and_get_location(to_parry(&entry), false);
-                    let n = self.shading.normal(&self.mesh, triangle, &location).unwrap_or(n);
-                    return Some(BodyPoint {
-                        point: (pose1 * Point3::from(entry)).coords,
-                        normal: pose1.rotation * n,
-                        distance: n.dot(&(p1 - entry)),
-                        crossed: true,
-                        entry: hit.time_of_impact,
-                    });
-                }
-            }
-        }
-        let (proj, (triangle, location)) = self.mesh.project_local_point_and_get_location_with_max_dist(
-            to_parry(&p1),
-            false,
-            max_distance,
-        )?;
-        let q = from_parry(proj.point);
-        let offset = p1 - q;
-        let distance = offset.norm();
-        let sign = if self.inside(&p1, proj.is_inside) {
-            -1.0
-        } else {
-            1.0
-        };
-        let normal = match self.shading.normal(&self.mesh, triangle, &location) {
-            Some(smooth) => smooth,
-            None if distance > 1e-9 * self.radius.max(1e-3) => sign * offset / distance,
-            None => from_parry(self.mesh.triangle(triangle).scaled_normal()).normalize(),
-        };
+        let LocalPoint {
+            point,
+            normal,
+            distance,
+            crossed,
+            entry,
+        } = surface.sweep(&p0, &p1, min_start_distance, max_distance, self.radius)?;
         Some(BodyPoint {
-            point: (pose1 * Point3::from(q)).coords,
+            point: (pose1 * Point3::from(point)).coords,
             normal: pose1.rotation * normal,
-            distance: sign * distance,
-            crossed: false,
-            entry: 1.0,
+            distance,
+            crossed,
+            entry,
         })
     }
 }
@@ -348,92 +340,4 @@ fn reachable_features(surface: &TriSurface, reachable: &[[u32; 3]], angle: f64) 
     let mut features = surface.sharp_features(angle);
     features.retain(|f| used[f.a as usize] && used[f.b as usize]);
     features
-}
-
-/// The contact normal over a tessellated smooth surface. The distance field's own gradient
-/// points away from the nearest vertex or edge of the tessellation, and turns at a rate of
-/// one over the distance around each: a particle near a facet vertex of a sphere would be
-/// pushed off radially from that vertex, breaking the body's symmetry. Over the smooth part
-/// the normal is instead interpolated from per-corner normals that average only the faces
-/// meeting smoothly; on a sharp edge or corner the gradient is the right normal and is kept.
-#[derive(Debug, Clone)]
-struct Shading {
-    /// Per triangle, the normal at each corner.
-    corners: Vec<[Vec3; 3]>,
-    sharp_edges: HashSet<(u32, u32)>,
-    sharp_vertices: Vec<bool>,
-}
-
-impl Shading {
-    fn new(v: &[Vec3], t: &[[u32; 3]], sharp: &[SurfaceFeature], angle: f64) -> Self {
-        let face_normal = |tri: &[u32; 3]| {
-            let [a, b, c] = tri.map(|i| v[i as usize]);
-            (b - a).cross(&(c - a)).normalize()
-        };
-        let corner_angle = |tri: &[u32; 3], k: usize| {
-            let p = tri.map(|i| v[i as usize]);
-            let (e1, e2) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-            e1.angle(&e2)
-        };
-        let normals: Vec<Vec3> = t.iter().map(face_normal).collect();
-        let mut around = vec![Vec::new(); v.len()];
-        for (f, tri) in t.iter().enumerate() {
-            for (k, &i) in tri.iter().enumerate() {
-                around[i as usize].push((f, k));
-            }
-        }
-        let cos_limit = angle.cos();
-        let corners = t
-            .iter()
-            .enumerate()
-            .map(|(f, tri)| {
-                [0, 1, 2].map(|k| {
-                    let sum: Vec3 = around[tri[k] as usize]
-                        .iter()
-                        .filter(|(g, _)| normals[*g].dot(&normals[f]) >= cos_limit)
-                        .map(|&(g, kg)| corner_angle(&t[g], kg) * normals[g])
-                        .sum();
-                    sum.try_normalize(1e-12).unwrap_or(normals[f])
-                })
-            })
-            .collect();
-        let mut sharp_vertices = vec![false; v.len()];
-        let mut sharp_edges = HashSet::new();
-        for f in sharp {
-            sharp_vertices[f.a as usize] = true;
-            sharp_vertices[f.b as usize] = true;
-            if f.a != f.b {
-                sharp_edges.insert((f.a.min(f.b), f.a.max(f.b)));
-            }
-        }
-        Self {
-            corners,
-            sharp_edges,
-            sharp_vertices,
-        }
-    }
-
-    /// The interpolated normal at a projection, or `None` on a sharp edge or corner.
-    fn normal(&self, mesh: &TriMesh, triangle: u32, location: &TrianglePointLocation) -> Option<Vec3> {
-        let idx = mesh.indices()[triangle as usize];
-        match *location {
-            TrianglePointLocation::OnVertex(i) if self.sharp_vertices[idx[i as usize] as usize] => {
-                return None
-            }
-            TrianglePointLocation::OnEdge(i, _) => {
-                let (a, b) = match i {
-                    0 => (idx[0], idx[1]),
-                    1 => (idx[1], idx[2]),
-                    _ => (idx[0], idx[2]),
-                };
-                if self.sharp_edges.contains(&(a.min(b), a.max(b))) {
-                    return None;
-                }
-            }
-            _ => {}
-        }
-        let w = location.barycentric_coordinates()?;
-        let c = &self.corners[triangle as usize];
-        (w[0] * c[0] + w[1] * c[1] + w[2] * c[2]).try_normalize(1e-12)
-    }
 }

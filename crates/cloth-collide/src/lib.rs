@@ -8,11 +8,12 @@
 
 mod bodies;
 mod body;
+mod contact_mesh;
 mod convert;
 mod motion;
 pub mod surface;
 
 pub use bodies::Bodies;
-pub use body::{Body, BodyError, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS};
+pub use body::{Body, BodyError, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS, THIN_PART};
 pub use motion::Motion;
 pub use surface::{SurfaceDefect, SurfaceError, SurfaceOptions, TriSurface};

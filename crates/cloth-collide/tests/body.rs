@@ -1,6 +1,7 @@
 //! Bodies: parameter errors that name the body and the field, poses and motion.
 
-use cloth_collide::{Body, BodyError, Motion, TriSurface};
+use cloth_collide::{Bodies, Body, BodyError, Motion, TriSurface};
+use cloth_core::{Collider, Proximity};
 use cloth_core::Vec3;
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion};
 
@@ -96,4 +97,44 @@ fn a_moving_body_moves_with_its_motion() {
     // At t = 1 the centre has reached the probe.
     assert!(body.signed_distance(0.0, &probe) > 1.4);
     assert!(body.signed_distance(1.0, &probe) < -0.45);
+}
+
+/// A trunk-sized block with a hand-sized one beside it, apart.
+fn trunk_and_hand() -> Bodies {
+    let trunk = TriSurface::cuboid(Vec3::new(0.2, 0.2, 0.2)).unwrap();
+    let hand = TriSurface::cuboid(Vec3::new(0.02, 0.04, 0.045))
+        .unwrap()
+        .transformed(&Isometry3::translation(0.5, 0.0, 0.0));
+    Bodies::new(vec![Body::new("body", TriSurface::merged(&[trunk, hand]))])
+}
+
+fn is_near(p: Proximity) -> bool {
+    matches!(p, Proximity::Near(_))
+}
+
+#[test]
+fn cloth_passing_thin_parts_meets_only_the_thick_ones() {
+    let bodies = trunk_and_hand();
+    // Each block has 12 triangles: the hand, under 10 cm every way through, is half the
+    // surface.
+    let thin = bodies.bodies()[0].thin_fraction();
+    assert!((thin - 0.5).abs() < 1e-12, "{thin}");
+    // A path through the hand crosses it, unless it passes thin parts.
+    let (a, b) = (Vec3::new(0.45, 0.0, 0.0), Vec3::new(0.55, 0.0, 0.0));
+    assert!(is_near(bodies.sweep(0.0, &a, 0.0, &b, 0.0, 0.01)));
+    assert!(!is_near(bodies.sweep_past_thin_parts(0.0, &a, 0.0, &b, 0.0, 0.01)));
+    // A path into the trunk crosses it either way.
+    let (a, b) = (Vec3::new(0.25, 0.0, 0.0), Vec3::new(0.15, 0.0, 0.0));
+    for p in [
+        bodies.sweep(0.0, &a, 0.0, &b, 0.0, 0.01),
+        bodies.sweep_past_thin_parts(0.0, &a, 0.0, &b, 0.0, 0.01),
+    ] {
+        match p {
+            Proximity::Near(hit) => assert!(hit.crossed && (hit.point.x - 0.2).abs() < 1e-9, "{hit:?}"),
+            Proximity::Far { .. } => panic!("the trunk was not met"),
+        }
+    }
+    // A body with no thin part is all thick.
+    let trunk = Body::new("trunk", TriSurface::cuboid(Vec3::new(0.2, 0.2, 0.2)).unwrap());
+    assert_eq!(trunk.thin_fraction(), 0.0);
 }

@@ -19,5 +19,6 @@ pub mod sewing;
 
 pub use garment::{Garment, GarmentBuilder, GarmentError, Layers, PlacementWarning};
 pub use pattern::{
-    Curve, Edge, Gather, Panel, Pattern, PatternError, Placement, Seam, SeamOrientation, SeamSide, Wrap,
+    BodyPart, Curve, Edge, Gather, Panel, Pattern, PatternError, Placement, Seam, SeamOrientation, SeamSide,
+    Wrap,
 };

@@ -89,6 +89,21 @@ pub trait Collider: Send + Sync + std::fmt::Debug {
         reach: f64,
     ) -> Proximity;
 
+    /// As [`Collider::sweep`], for a particle passing through the bodies' thin parts
+    /// (hands, forearms: where a body is thinner under its surface than a hand is wide),
+    /// which are not there for it; a collider without thin parts answers as `sweep` does.
+    fn sweep_past_thin_parts(
+        &self,
+        t0: f64,
+        x0: &Vec3,
+        t1: f64,
+        x1: &Vec3,
+        start_gap_lower_bound: f64,
+        reach: f64,
+    ) -> Proximity {
+        self.sweep(t0, x0, t1, x1, start_gap_lower_bound, reach)
+    }
+
     /// An upper bound on how far any surface point moves between `t0` and `t1` (0 when
     /// every body is static).
     fn motion_bound(&self, t0: f64, t1: f64) -> f64;

@@ -32,6 +32,11 @@ pub const SLIP_SPEED: f64 = 1e-4;
 /// particles of a symmetric scene always decide alike.
 const NOISE_SPEED: f64 = 1e-9;
 
+/// Nothing known of where a particle is: the next step asks.
+const UNKNOWN: Proximity = Proximity::Far {
+    gap_lower_bound: f64::NEG_INFINITY,
+};
+
 /// How a particle touches a body in this step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ContactMode {
@@ -61,27 +66,30 @@ pub(crate) struct ParticleState {
     /// `demand` is from a step of the present motion (not before the first step, nor
     /// after positions or velocities were set).
     pub demand_known: bool,
-    /// The particle is of a piece passing through the bodies, untouched by them (see
-    /// [`PassThrough`]).
+    /// The particle is of a piece passing through the bodies' thin parts (see
+    /// [`PassThrough`]): they are not there for it.
     pub passing: bool,
     /// `passing` when the step began, for a step taken again.
     passing_at_start: bool,
-    /// The particle ended the last step inside a body (kept for the particles whose piece
-    /// is passing through).
+    /// Of a piece passing until out, whose particles are watched for being inside a body.
+    watched: bool,
+    /// The particle ended the last step inside a body (kept for the watched particles).
     inside: bool,
 }
 
-/// A piece of cloth (a panel) placed through a thin part of a body (a hand, an arm), to be
-/// drawn out of it by the seams: held by the body, it would hang on it, pushed out to
-/// the nearest side; passed particle by particle, its particles outside the body would
-/// catch on the hand as the piece moves past it, and those the hand's section reaches as
-/// the piece moves would be thrown out of it when released. So the whole piece passes
-/// through the bodies, untouched by them, until it ends a step with none of its particles
-/// inside one; from then on the bodies hold it as any cloth.
+/// A piece of cloth (a panel) that passes through the bodies' thin parts (hands,
+/// forearms, ears, feet: see [`crate::Collider::sweep_past_thin_parts`]) while the thick
+/// ones hold it as any cloth. Placed through a hand, a panel held by it would hang on it,
+/// pushed out to the nearest side; passed particle by particle, its particles outside the
+/// hand would catch on it as the piece moves past, and those the hand's section reaches
+/// would be thrown out of it when let go. So the whole piece passes, `until_out` it ends a
+/// step with none of its particles inside a body, or for the whole simulation (a skirt
+/// sewn round the hips of a body whose hands hang inside its panels).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct PassThrough {
     /// Every particle of the piece.
     pub members: Vec<usize>,
+    pub until_out: bool,
 }
 
 /// A contact constrained in the current step.
@@ -154,15 +162,14 @@ impl ParticleContacts {
         Self {
             state: vec![
                 ParticleState {
-                    proximity: Proximity::Far {
-                        gap_lower_bound: f64::NEG_INFINITY,
-                    },
+                    proximity: UNKNOWN,
                     mode: ContactMode::Free,
                     released: false,
                     demand: Vec3::zeros(),
                     demand_known: false,
                     passing: false,
                     passing_at_start: false,
+                    watched: false,
                     inside: false,
                 };
                 n
@@ -178,9 +185,12 @@ impl ParticleContacts {
     pub fn set_pass_through(&mut self, pieces: Vec<PassThrough>) {
         for piece in &pieces {
             for &i in &piece.members {
-                self.state[i].passing = true;
+                let s = &mut self.state[i];
+                s.passing = true;
+                s.watched = piece.until_out;
+                s.proximity = UNKNOWN;
                 // Until the first step has looked.
-                self.state[i].inside = true;
+                s.inside = piece.until_out;
             }
         }
         self.pass_through = pieces;
@@ -199,13 +209,17 @@ impl ParticleContacts {
             .filter(|p| p.members.first().is_some_and(|&i| self.state[i].passing))
     }
 
-    /// Ends the passing of each piece with none of its particles inside a body.
+    /// Ends the passing of each piece passing until out with none of its particles inside
+    /// a body.
     fn finish_passing(&mut self) {
-        for piece in &self.pass_through {
+        for piece in self.pass_through.iter().filter(|p| p.until_out) {
             let passing = piece.members.first().is_some_and(|&i| self.state[i].passing);
             if passing && !piece.members.iter().any(|&i| self.state[i].inside) {
                 for &i in &piece.members {
-                    self.state[i].passing = false;
+                    let s = &mut self.state[i];
+                    s.passing = false;
+                    // What it knew was of the thick parts: the next step asks afresh.
+                    s.proximity = UNKNOWN;
                 }
             }
         }
@@ -215,7 +229,10 @@ impl ParticleContacts {
     pub fn refresh(&mut self, collider: &dyn Collider, t: f64, x: &[Vec3], parallel: bool) {
         let reach = self.reach;
         let query = |(s, xi): (&mut ParticleState, &Vec3)| {
-            s.proximity = collider.sweep(t, xi, t, xi, f64::INFINITY, reach);
+            s.proximity = match s.passing {
+                true => collider.sweep_past_thin_parts(t, xi, t, xi, f64::INFINITY, reach),
+                false => collider.sweep(t, xi, t, xi, f64::INFINITY, reach),
+            };
             s.mode = ContactMode::Free;
             s.released = false;
             s.demand_known = false;
@@ -246,10 +263,6 @@ impl ParticleContacts {
                 s.mode = ContactMode::Free;
                 continue;
             };
-            if s.passing {
-                s.mode = ContactMode::Free;
-                continue;
-            }
             let n = p.normal;
             let relative = v[i] - p.velocity;
             // In contact when inside the band, or about to cross into the layer within the
@@ -478,6 +491,12 @@ impl ParticleContacts {
         let visit = |(((s, x0), x1), v1): (((&mut ParticleState, &Vec3), &mut Vec3), &mut Vec3),
                      pinned: bool|
          -> SweepCounts {
+            if s.passing && s.watched {
+                // Out once it ends the step clear of every body, thin parts and all (in the
+                // contact layer at most, from where a later step's contact carries it out).
+                let whole = collider.sweep(t0, x0, t1, x1, f64::NEG_INFINITY, reach);
+                s.inside = matches!(whole, Proximity::Near(p) if p.distance < 0.0 || p.crossed);
+            }
             let start_bound = s.proximity.gap_lower_bound();
             let moved = (*x1 - x0).norm() + body_motion;
             if pinned || start_bound - moved > reach {
@@ -487,15 +506,11 @@ impl ParticleContacts {
                 };
                 return SweepCounts::default();
             }
-            let mut proximity = collider.sweep(t0, x0, t1, x1, start_bound, reach);
+            let mut proximity = match s.passing {
+                true => collider.sweep_past_thin_parts(t0, x0, t1, x1, start_bound, reach),
+                false => collider.sweep(t0, x0, t1, x1, start_bound, reach),
+            };
             let mut counts = SweepCounts::default();
-            if s.passing {
-                // Untouched; out once it ends the step clear of every body (in the contact
-                // layer at most, from where a later step's contact carries it out).
-                s.inside = matches!(&proximity, Proximity::Near(p) if p.distance < 0.0 || p.crossed);
-                s.proximity = proximity;
-                return counts;
-            }
             if let Proximity::Near(p) = &mut proximity {
                 if p.crossed || p.distance < 0.0 {
                     counts.corrected = 1;
@@ -554,7 +569,8 @@ impl ParticleContacts {
     }
 
     /// As [`ParticleContacts::gap_lower_bound`] for sharp features, which leave the
-    /// triangles of particles passing through a body alone: infinite for those.
+    /// triangles of particles passing through the thin parts alone (most features are
+    /// there: fingers, ears): infinite for those.
     pub fn feature_gap_bound(&self, i: usize) -> f64 {
         if self.state[i].passing {
             f64::INFINITY

@@ -15,7 +15,7 @@ pub use size::{triangles_in, DEFAULT_MAX_TRIANGLES};
 pub use weld::Welded;
 
 use crate::meshing::mesh_region;
-use crate::pattern::{Edge, Pattern, SeamOrientation};
+use crate::pattern::{BodyPart, Edge, Pattern, SeamOrientation};
 use cloth_core::{ClothMesh, PassThrough, Vec3};
 use nalgebra::Rotation2;
 
@@ -52,6 +52,8 @@ pub struct Garment {
     pub panel_names: Vec<String>,
     /// The fabric preset named by each panel, if any.
     pub panel_fabrics: Vec<Option<String>>,
+    /// The part of the body each panel dresses, if said.
+    pub panel_dresses: Vec<Option<BodyPart>>,
     /// The triangles along the longer side of seams whose sides differ, gathered onto the
     /// shorter: they are sewn slack in compression (see [`gathering`]).
     pub gathered: Vec<usize>,
@@ -217,6 +219,7 @@ impl GarmentBuilder {
             triangle_panel,
             panel_names: pattern.panels.iter().map(|p| p.name.clone()).collect(),
             panel_fabrics: pattern.panels.iter().map(|p| p.fabric.clone()).collect(),
+            panel_dresses: pattern.panels.iter().map(|p| p.dresses).collect(),
             gathered,
             passing: Vec::new(),
         })

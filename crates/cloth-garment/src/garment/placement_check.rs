@@ -115,7 +115,10 @@ impl Garment {
             chords.sort_by(f64::total_cmp);
             if chords.get(chords.len() / 2).is_some_and(|&c| c < THIN) {
                 w.passing = inside.len();
-                self.passing.push(PassThrough { members: ids.clone() });
+                self.passing.push(PassThrough {
+                    members: ids.clone(),
+                    until_out: true,
+                });
                 warnings.push(w);
                 continue;
             }

@@ -1,7 +1,7 @@
 //! One GarmentCode panel as our `Panel`: its outline in metres, chained into a closed loop,
 //! and its placement moved from GarmentCode's world into ours.
 
-use crate::pattern::{Curve, Edge, Panel, PatternError, Placement, Point2};
+use crate::pattern::{BodyPart, Curve, Edge, Panel, PatternError, Placement, Point2};
 use cloth_core::Vec3;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 
@@ -94,6 +94,12 @@ pub(super) fn panel(
         grain: Point2::new(0.0, 1.0),
         fabric: None,
         placement: placement(record, &vertices, mirrored, frame),
+        dresses: match record.label.as_deref() {
+            Some("body") => Some(BodyPart::Torso),
+            Some("leg") => Some(BodyPart::Legs),
+            Some("arm") => Some(BodyPart::Arms),
+            _ => None,
+        },
     };
     Ok((panel, reversed))
 }

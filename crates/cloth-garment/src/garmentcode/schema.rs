@@ -62,6 +62,8 @@ pub(super) struct PanelRecord {
     pub rotation: [f64; 3],
     pub vertices: Vec<[f64; 2]>,
     pub edges: Vec<EdgeRecord>,
+    /// What the panel dresses: "body", "leg" or "arm" (others are kept as nothing).
+    pub label: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -41,6 +41,22 @@ pub struct Panel {
     /// A fabric preset name; `None` uses the garment's fabric.
     pub fabric: Option<String>,
     pub placement: Placement,
+    /// The part of the body the panel dresses, if said (GarmentCode's panel `label`).
+    pub dresses: Option<BodyPart>,
+}
+
+/// A part of the body a panel dresses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BodyPart {
+    /// The trunk: a bodice, a collar, a waistband (GarmentCode's "body").
+    Torso,
+    /// The hips and legs: a skirt, trousers (GarmentCode's "leg"). Sewn, such a panel
+    /// passes the body's thin parts (the hands and forearms of a body in an A pose hang
+    /// beside the hips, inside a wide skirt's panels).
+    Legs,
+    /// A sleeve or cuff (GarmentCode's "arm").
+    Arms,
 }
 
 /// One edge of a panel's outline or of a hole, from `start` to `end`.

@@ -8,6 +8,7 @@
 //! [[panels]]
 //! name = "front"
 //! grain = [0, 1]                      # the warp runs along the panel's y
+//! dresses = "legs"                    # or "torso", "arms"; legs pass thin parts sewn
 //! # Each edge is given by its start; it ends where the next one starts.
 //! outline = [
 //!     { start = [-26, 0], name = "hem" },
@@ -24,7 +25,8 @@
 //! ```
 
 use super::{
-    Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam, SeamOrientation, SeamSide, Wrap,
+    BodyPart, Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam, SeamOrientation, SeamSide,
+    Wrap,
 };
 use cloth_core::Vec3;
 use serde::Deserialize;
@@ -73,6 +75,7 @@ struct PanelRecord {
     fabric: Option<String>,
     #[serde(default)]
     placement: PlacementRecord,
+    dresses: Option<BodyPart>,
 }
 
 fn default_grain() -> [f64; 2] {
@@ -226,6 +229,7 @@ impl Pattern {
                 grain: Point2::new(p.grain[0], p.grain[1]),
                 fabric: p.fabric.clone(),
                 placement,
+                dresses: p.dresses,
             });
         }
         let mut pattern = Pattern {
