@@ -524,3 +524,46 @@ fn a_sheet_placed_through_a_hand_passes_out_of_it_whole_then_is_held_by_it() {
     let middle = sim.positions()[15 * 31 + 15];
     assert!(middle.x > 0.015 && middle.x < 0.03, "{middle}");
 }
+
+#[test]
+fn a_sheet_passing_a_hand_for_good_stays_through_it_and_its_crossings_are_counted_apart() {
+    use cloth::collide::{Body, TriSurface};
+    use cloth::{
+        count_body_intersections, Fabric, GridBuilder, PassThrough, SimulationBuilder, SolverSettings,
+    };
+    let hand = TriSurface::cuboid(Vec3::new(0.015, 0.04, 0.045)).unwrap();
+    let bodies = Arc::new(Bodies::new(vec![Body::new("hand", hand)]));
+    let mesh = GridBuilder::new(31, 31)
+        .size(0.3, 0.3)
+        .origin(Vec3::new(0.003, -0.15, -0.15))
+        .axes(Vec3::y(), Vec3::z())
+        .build()
+        .unwrap();
+    let n = mesh.vertex_count();
+    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like().with_damping(0.01))
+        .settings(SolverSettings {
+            gravity: Vec3::zeros(),
+            time_step: 0.01,
+            ..SolverSettings::default()
+        })
+        .pass_through(vec![PassThrough {
+            members: (0..n).collect(),
+            until_out: false,
+        }])
+        .collider(bodies.clone())
+        .build()
+        .unwrap();
+    for _ in 0..10 {
+        sim.step().unwrap();
+    }
+    // Left where it was, through the hand, and still passing it.
+    assert_eq!(sim.passing().len(), 1);
+    assert!(sim.positions().iter().all(|p| (p.x - 0.003).abs() < 1e-6));
+    let apart = sim.body_intersections_apart();
+    assert_eq!(apart.crossings, 0);
+    assert_eq!(sim.body_intersections(), 0);
+    // Counted as any cloth's, the sheet's edges cross the hand's sides where it cuts them.
+    let all = count_body_intersections(bodies.as_ref(), sim.time(), sim.mesh(), sim.positions(), &[]);
+    assert!(all.crossings > 0 && all.thin_parts_passed == 0, "{all:?}");
+    assert_eq!(apart.thin_parts_passed, all.crossings);
+}

@@ -31,6 +31,8 @@ pub struct SummaryEntry {
     pub drape_ended: Option<String>,
     pub self_intersections: Option<usize>,
     pub body_intersections: Option<usize>,
+    /// Crossings of the body's thin parts by panels passing them for the whole run.
+    pub thin_parts_passed: Option<usize>,
     /// m.
     pub deepest_penetration: Option<f64>,
     /// %.
@@ -56,6 +58,7 @@ impl SummaryEntry {
             drape_ended: None,
             self_intersections: None,
             body_intersections: None,
+            thin_parts_passed: None,
             deepest_penetration: None,
             max_warp: None,
             max_weft: None,
@@ -99,6 +102,7 @@ impl SummaryEntry {
             drape_ended: stage("draping").and_then(|s| s["ended"].as_str().map(str::to_string)),
             self_intersections: count("self_intersections"),
             body_intersections: count("body_intersections"),
+            thin_parts_passed: count("thin_parts_passed"),
             deepest_penetration: r["deepest_penetration"].as_f64(),
             max_warp: r["strain"]["max_warp"].as_f64(),
             max_weft: r["strain"]["max_weft"].as_f64(),

@@ -70,6 +70,13 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
         "| intersecting edge-triangle pairs, cloth / cloth and bodies | {} / {} |",
         report.self_intersections, report.body_intersections
     )?;
+    if report.thin_parts_passed > 0 {
+        writeln!(
+            out,
+            "| crossings of the body's thin parts by panels passing them (skirts through the hands) | {} |",
+            report.thin_parts_passed
+        )?;
+    }
     if let Some(gap) = report.largest_seam_gap {
         writeln!(out, "| largest seam gap | {:.2} mm |", 1e3 * gap)?;
     }

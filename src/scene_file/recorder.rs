@@ -39,6 +39,7 @@ pub(super) struct Recorder<'a> {
     failure: Option<String>,
     /// The pieces of the cloth found through each other at the start of each stage.
     tangles: Vec<(&'static str, Tangle)>,
+    passes_thin_parts: Vec<bool>,
 }
 
 /// What a run leaves: its last good state and what was recorded on the way.
@@ -52,6 +53,8 @@ pub(super) struct Recorded {
     pub frames: Vec<FrameRecord>,
     /// Each stage's pieces found through each other at its start, and when they came apart.
     pub tangles: Vec<(&'static str, Tangle)>,
+    /// Per particle of the last stage, whether it passes the bodies' thin parts for good.
+    pub passes_thin_parts: Vec<bool>,
 }
 
 impl<'a> Recorder<'a> {
@@ -84,6 +87,7 @@ impl<'a> Recorder<'a> {
             frames: Vec::new(),
             failure: None,
             tangles: Vec::new(),
+            passes_thin_parts: Vec::new(),
         }
     }
 
@@ -156,6 +160,7 @@ impl<'a> Recorder<'a> {
             checkpoints: self.checkpoint_rows,
             frames: self.frames,
             tangles: self.tangles,
+            passes_thin_parts: self.passes_thin_parts,
         }
     }
 
@@ -167,6 +172,7 @@ impl<'a> Recorder<'a> {
             self.seams.clear();
             self.seams.extend_from_slice(sim.seams());
             self.exemption_radius = sim.self_exemption_radius();
+            self.passes_thin_parts = sim.passes_thin_parts();
         }
         let stage = self.stage;
         self.tangles.retain(|(s, _)| *s != stage);

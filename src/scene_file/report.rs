@@ -108,8 +108,13 @@ pub struct RunReport {
     /// Edge-triangle pairs of the cloth passing through each other at the end (pairs
     /// sharing or neighbouring particles, or near in the flat cloth, exempt).
     pub self_intersections: usize,
-    /// Cloth edges passing through body triangles at the end, counted the same way.
+    /// Cloth edges passing through body triangles at the end, counted the same way, but
+    /// for the next.
     pub body_intersections: usize,
+    /// Crossings of the body's thin parts (hands, forearms) by panels that pass them for
+    /// the whole run, as GarmentCode's own simulator lets skirts pass the arms: panels
+    /// dressing the legs (see `cloth_garment::pattern::BodyPart::Legs`).
+    pub thin_parts_passed: usize,
     /// The widest seam gap: when the seams were welded, or at the end if they never were,
     /// m (garments only).
     pub largest_seam_gap: Option<f64>,

@@ -141,6 +141,7 @@ impl Prepared {
             checkpoints,
             frames,
             tangles,
+            passes_thin_parts,
         } = rec.finish();
         let tangles = tangles
             .into_iter()
@@ -153,7 +154,8 @@ impl Prepared {
             .collect();
         let (deepest, _) = self.bodies.deepest_inside(time, &positions);
         let self_intersections = count_self_intersections(&mesh, &seams, exemption_radius, &positions).count;
-        let body_intersections = count_body_intersections(self.bodies.as_ref(), time, &mesh, &positions);
+        let body =
+            count_body_intersections(self.bodies.as_ref(), time, &mesh, &positions, &passes_thin_parts);
         let measurement = match (&outcome, sheet_test) {
             (RunOutcome::Finished, Some(test)) => Some(measure(test, &mesh, &positions)),
             _ => None,
@@ -170,7 +172,8 @@ impl Prepared {
             strain: StrainSummary::of(&mesh, &positions),
             deepest_penetration: deepest,
             self_intersections,
-            body_intersections,
+            body_intersections: body.crossings,
+            thin_parts_passed: body.thin_parts_passed,
             largest_seam_gap: gap,
             seam_stalls,
             tangles,

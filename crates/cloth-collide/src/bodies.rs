@@ -140,6 +140,13 @@ impl Collider for Bodies {
             .sum()
     }
 
+    fn thick_segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize {
+        self.bodies
+            .iter()
+            .map(|body| body.segment_crossings_of(Parts::Thick, t, a, b))
+            .sum()
+    }
+
     fn sharp_features(&self, t: f64, out: &mut Vec<SharpFeature>) {
         for body in &self.bodies {
             if body.sharp_features().is_empty() {

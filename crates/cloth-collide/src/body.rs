@@ -3,6 +3,7 @@
 
 use crate::contact_mesh::{ContactMesh, LocalPoint};
 use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
+use crate::thin_parts::{thin_triangles, THIN_PART};
 use crate::Motion;
 use cloth_core::Vec3;
 use nalgebra::{Isometry3, Point3};
@@ -11,10 +12,6 @@ use nalgebra::{Isometry3, Point3};
 pub const DEFAULT_THICKNESS: f64 = 0.003;
 /// Default fold angle above which an edge counts as sharp, rad (30 degrees).
 pub const DEFAULT_SHARP_ANGLE: f64 = std::f64::consts::PI / 6.0;
-/// Where the body is thinner than this under its surface (along the inward normal), m,
-/// it is a thin part: a hand, a forearm, an ear, a foot, under a hand's width. The trunk,
-/// the head, the thighs and the neck are thicker.
-pub const THIN_PART: f64 = 0.1;
 
 fn finite<'a>(values: impl IntoIterator<Item = &'a f64>) -> bool {
     values.into_iter().all(|c| c.is_finite())
@@ -37,6 +34,10 @@ pub struct Body {
     surface: TriSurface,
     /// The surface's triangles the cloth can reach (those inside other parts left out).
     full: ContactMesh,
+    /// The body's chord under each of them, up to [`THIN_PART`].
+    chords: Vec<f64>,
+    /// The world's up in the body's frame as placed, which tells arms from feet.
+    up: Vec3,
     /// Those of them over the body's thick parts, for cloth passing through its thin parts.
     thick: Thick,
     sharp: Vec<SurfaceFeature>,
@@ -60,11 +61,44 @@ enum Thick {
     Nothing,
 }
 
+/// The body's thick parts, `up` being the world's up in its frame.
+fn thick_parts(
+    surface: &TriSurface,
+    full: &ContactMesh,
+    chords: &[f64],
+    up: &Vec3,
+    sharp: &[SurfaceFeature],
+    angle: f64,
+) -> Thick {
+    let thin = thin_triangles(surface.vertices(), full.triangles(), chords, up);
+    let thick_triangles: Vec<[u32; 3]> = full
+        .triangles()
+        .iter()
+        .zip(&thin)
+        .filter(|(_, &thin)| !thin)
+        .map(|(t, _)| *t)
+        .collect();
+    if thick_triangles.len() == full.triangles().len() {
+        Thick::Whole
+    } else if thick_triangles.is_empty() {
+        Thick::Nothing
+    } else {
+        // Open where the thin parts were: its winding number tells inside from outside.
+        Thick::Parts(Box::new(ContactMesh::new(
+            surface.vertices(),
+            thick_triangles,
+            false,
+            sharp,
+            angle,
+        )))
+    }
+}
+
 /// Which of a body a query meets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Parts {
     All,
-    /// Its thick parts only (see [`THIN_PART`]).
+    /// Its thick parts only (see [`crate::thin_parts`]).
     Thick,
 }
 
@@ -102,31 +136,14 @@ impl Body {
             angle,
         );
         let chords = full.chords(THIN_PART);
-        let thick_triangles: Vec<[u32; 3]> = full
-            .triangles()
-            .iter()
-            .zip(&chords)
-            .filter(|(_, &c)| c >= THIN_PART)
-            .map(|(t, _)| *t)
-            .collect();
-        let thick = if thick_triangles.len() == full.triangles().len() {
-            Thick::Whole
-        } else if thick_triangles.is_empty() {
-            Thick::Nothing
-        } else {
-            // Open where the thin parts were: its winding number tells inside from outside.
-            Thick::Parts(Box::new(ContactMesh::new(
-                surface.vertices(),
-                thick_triangles,
-                false,
-                &sharp,
-                angle,
-            )))
-        };
+        let up = Vec3::z();
+        let thick = thick_parts(&surface, &full, &chords, &up, &sharp, angle);
         Self {
             name: name.into(),
             surface,
             full,
+            chords,
+            up,
             thick,
             sharp,
             sharp_angle: angle,
@@ -191,6 +208,18 @@ impl Body {
             Motion::Path(_) => {}
         }
         self.motion = motion;
+        let up = self.pose(0.0).inverse_transform_vector(&Vec3::z());
+        if (up - self.up).norm() > 1e-9 {
+            self.up = up;
+            self.thick = thick_parts(
+                &self.surface,
+                &self.full,
+                &self.chords,
+                &up,
+                &self.sharp,
+                self.sharp_angle,
+            );
+        }
         Ok(self)
     }
     /// Contact thickness, m: the cloth is kept this far from the surface.
@@ -264,12 +293,29 @@ impl Body {
     /// How many of the body's triangles the segment from `a` to `b` passes through at
     /// time `t` (see [`cloth_core::Collider::segment_crossings`]).
     pub fn segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize {
+        self.segment_crossings_of(Parts::All, t, a, b)
+    }
+
+    /// As [`Body::segment_crossings`], of the body's `parts`.
+    pub(crate) fn segment_crossings_of(&self, parts: Parts, t: f64, a: &Vec3, b: &Vec3) -> usize {
+        let Some(surface) = self.contact_mesh(parts) else {
+            return 0;
+        };
         let pose = self.pose(t);
         let (p, q) = (
             pose.inverse_transform_point(&Point3::from(*a)).coords,
             pose.inverse_transform_point(&Point3::from(*b)).coords,
         );
-        self.full.segment_crossings(&p, &q)
+        surface.segment_crossings(&p, &q)
+    }
+
+    /// The contact surface of the body's `parts`, if it has any.
+    fn contact_mesh(&self, parts: Parts) -> Option<&ContactMesh> {
+        match (parts, &self.thick) {
+            (Parts::All, _) | (Parts::Thick, Thick::Whole) => Some(&self.full),
+            (Parts::Thick, Thick::Parts(thick)) => Some(thick),
+            (Parts::Thick, Thick::Nothing) => None,
+        }
     }
 
     /// Signed distance of `x` from the surface at time `t` (negative inside), with no
@@ -279,7 +325,7 @@ impl Body {
         self.full.signed_distance(&p)
     }
 
-    /// The fraction of the body's reachable surface over thin parts (see [`THIN_PART`]).
+    /// The fraction of the body's reachable surface over thin parts (see [`crate::thin_parts`]).
     pub fn thin_fraction(&self) -> f64 {
         match &self.thick {
             Thick::Whole => 0.0,
@@ -303,11 +349,7 @@ impl Body {
         min_start_distance: f64,
         max_distance: f64,
     ) -> Option<BodyPoint> {
-        let surface = match (parts, &self.thick) {
-            (Parts::All, _) | (Parts::Thick, Thick::Whole) => &self.full,
-            (Parts::Thick, Thick::Parts(thick)) => thick,
-            (Parts::Thick, Thick::Nothing) => return None,
-        };
+        let surface = self.contact_mesh(parts)?;
         let pose1 = self.pose(t1);
         let p1 = pose1.inverse_transform_point(&Point3::from(*x1)).coords;
         let p0 = if t0 == t1 {

@@ -12,8 +12,10 @@ mod contact_mesh;
 mod convert;
 mod motion;
 pub mod surface;
+mod thin_parts;
 
 pub use bodies::Bodies;
-pub use body::{Body, BodyError, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS, THIN_PART};
+pub use body::{Body, BodyError, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS};
 pub use motion::Motion;
 pub use surface::{SurfaceDefect, SurfaceError, SurfaceOptions, TriSurface};
+pub use thin_parts::THIN_PART;

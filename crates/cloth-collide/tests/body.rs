@@ -1,8 +1,8 @@
 //! Bodies: parameter errors that name the body and the field, poses and motion.
 
 use cloth_collide::{Bodies, Body, BodyError, Motion, TriSurface};
-use cloth_core::{Collider, Proximity};
 use cloth_core::Vec3;
+use cloth_core::{Collider, Proximity};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion};
 
 fn ball() -> Body {
@@ -122,7 +122,9 @@ fn cloth_passing_thin_parts_meets_only_the_thick_ones() {
     // A path through the hand crosses it, unless it passes thin parts.
     let (a, b) = (Vec3::new(0.45, 0.0, 0.0), Vec3::new(0.55, 0.0, 0.0));
     assert!(is_near(bodies.sweep(0.0, &a, 0.0, &b, 0.0, 0.01)));
-    assert!(!is_near(bodies.sweep_past_thin_parts(0.0, &a, 0.0, &b, 0.0, 0.01)));
+    assert!(!is_near(
+        bodies.sweep_past_thin_parts(0.0, &a, 0.0, &b, 0.0, 0.01)
+    ));
     // A path into the trunk crosses it either way.
     let (a, b) = (Vec3::new(0.25, 0.0, 0.0), Vec3::new(0.15, 0.0, 0.0));
     for p in [

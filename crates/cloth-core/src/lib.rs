@@ -22,7 +22,8 @@ pub mod solver;
 mod spatial;
 
 pub use contact::{
-    count_body_intersections, Collider, ContactMode, PassThrough, Proximity, SharpFeature, SurfacePoint,
+    count_body_intersections, BodyIntersections, Collider, ContactMode, PassThrough, Proximity, SharpFeature,
+    SurfacePoint,
 };
 pub use error::{DivergenceReason, MeshError, ParamError, SimError};
 pub use fabric::{

@@ -118,4 +118,10 @@ pub trait Collider: Send + Sync + std::fmt::Debug {
     /// each decided by [`crate::self_contact::geometry::segment_crosses_triangle`], as the
     /// cloth's own intersections are.
     fn segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize;
+
+    /// As [`Collider::segment_crossings`], of the bodies' thick parts only (see
+    /// [`Collider::sweep_past_thin_parts`]).
+    fn thick_segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize {
+        self.segment_crossings(t, a, b)
+    }
 }

@@ -12,15 +12,52 @@ use crate::mesh::ClothMesh;
 use crate::Vec3;
 use std::sync::Arc;
 
+/// The cloth's edges through the bodies' triangles, counted edge-triangle pair by pair as
+/// the cloth's own intersections are ([`crate::count_self_intersections`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BodyIntersections {
+    /// Those that count: every crossing but the next.
+    pub crossings: usize,
+    /// Crossings of the bodies' thin parts by cloth that passes them for the whole
+    /// simulation (see [`PassThrough::until_out`]): a skirt through the hands of a body
+    /// in an A pose.
+    pub thin_parts_passed: usize,
+}
+
 /// The edges of `mesh` at positions `x` passing through the triangles of `collider`'s
-/// bodies at time `t`, counted edge-triangle pair by pair as the cloth's own
-/// intersections are ([`crate::count_self_intersections`]).
-pub fn count_body_intersections(collider: &dyn Collider, t: f64, mesh: &ClothMesh, x: &[Vec3]) -> usize {
+/// bodies at time `t`; `passes_thin_parts` (empty, or one flag per particle) marks the
+/// particles passing the bodies' thin parts for good, whose edges (with either end
+/// passing) cross only the thick parts for the count.
+pub fn count_body_intersections(
+    collider: &dyn Collider,
+    t: f64,
+    mesh: &ClothMesh,
+    x: &[Vec3],
+    passes_thin_parts: &[bool],
+) -> BodyIntersections {
     use rayon::prelude::*;
+    let passes = |i: usize| passes_thin_parts.get(i).copied().unwrap_or(false);
     mesh.edges()
         .par_iter()
-        .map(|&[a, b]| collider.segment_crossings(t, &x[a], &x[b]))
-        .sum()
+        .map(|&[a, b]| {
+            let all = collider.segment_crossings(t, &x[a], &x[b]);
+            if all > 0 && (passes(a) || passes(b)) {
+                let thick = collider.thick_segment_crossings(t, &x[a], &x[b]);
+                BodyIntersections {
+                    crossings: thick,
+                    thin_parts_passed: all.saturating_sub(thick),
+                }
+            } else {
+                BodyIntersections {
+                    crossings: all,
+                    thin_parts_passed: 0,
+                }
+            }
+        })
+        .reduce(BodyIntersections::default, |p, q| BodyIntersections {
+            crossings: p.crossings + q.crossings,
+            thin_parts_passed: p.thin_parts_passed + q.thin_parts_passed,
+        })
 }
 
 /// Everything the solver keeps for contacts: the bodies, the per-particle state and the

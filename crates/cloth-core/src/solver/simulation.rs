@@ -890,11 +890,36 @@ impl Simulation {
 
     /// The cloth's edges passing through a body's triangles now, counted edge-triangle pair
     /// by pair as [`Simulation::self_intersections`] counts the cloth's own (0 without
-    /// bodies).
+    /// bodies), but for the thin parts that pieces passing them for good cross.
     pub fn body_intersections(&self) -> usize {
-        self.contacts.as_ref().map_or(0, |c| {
-            crate::contact::count_body_intersections(c.collider.as_ref(), self.time, &self.mesh, &self.x)
+        self.body_intersections_apart().crossings
+    }
+
+    /// The body intersections, with the crossings of thin parts by pieces passing them for
+    /// good apart.
+    pub fn body_intersections_apart(&self) -> crate::BodyIntersections {
+        self.contacts.as_ref().map_or_else(Default::default, |c| {
+            crate::contact::count_body_intersections(
+                c.collider.as_ref(),
+                self.time,
+                &self.mesh,
+                &self.x,
+                &self.passes_thin_parts(),
+            )
         })
+    }
+
+    /// Per particle, whether it passes the bodies' thin parts for the whole simulation.
+    pub fn passes_thin_parts(&self) -> Vec<bool> {
+        let mut flags = vec![false; self.x.len()];
+        for piece in self.passing().iter().filter(|p| !p.until_out) {
+            for &i in &piece.members {
+                if let Some(f) = flags.get_mut(i) {
+                    *f = true;
+                }
+            }
+        }
+        flags
     }
 
     /// The pieces still passing through the bodies (see [`SimulationBuilder::pass_through`]).

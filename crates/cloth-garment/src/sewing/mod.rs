@@ -65,8 +65,9 @@ pub struct Sewn {
     pub report: SewingReport,
     /// Bending calibration of the panels, kept for the drape.
     pub bending_calibration: Vec<[f64; 2]>,
-    /// The panels still passing through a thin part of a body they were placed through
-    /// (see [`Garment::passing`]), in welded particles: they go on passing in the drape.
+    /// The panels still passing the body's thin parts, in welded particles: those placed
+    /// through one (see [`Garment::passing`]) until they are out of it, and those dressing
+    /// the legs for the whole drape too (see [`sewing_passes`]).
     pub passing: Vec<PassThrough>,
 }
 
@@ -239,10 +240,9 @@ pub fn sew(
     let passing = sim
         .passing()
         .iter()
-        // In the drape every piece still passing passes only until it is out.
         .map(|p| PassThrough {
             members: map(&p.members),
-            until_out: true,
+            until_out: p.until_out,
         })
         .collect();
     Ok(Sewn {
@@ -263,9 +263,14 @@ pub fn sew(
 }
 
 /// The pieces passing the body's thin parts while sewn: the panels dressing the legs for
-/// the whole stage (GarmentCode's skirts are placed round a body whose hands hang inside
-/// them, and sewn round the hips they would gather on the hands), and the other panels
-/// placed through a thin part until they are out of it (see [`Garment::move_out_of`]).
+/// the whole simulation, and the other panels placed through a thin part until they are
+/// out of it (see [`Garment::move_out_of`]).
+///
+/// GarmentCode places skirts round a body in an A pose whose hands hang inside their
+/// panels: sewn round the hips they gathered on the hands, and draped a circle skirt hung
+/// from the wrists. GarmentCode's own simulator lets the cloth it labels as dressing the
+/// legs pass the arms (its "arm filter for the skirts"); so do we, and the report counts
+/// the crossings so allowed apart from the body intersections.
 fn sewing_passes(garment: &Garment) -> Vec<PassThrough> {
     let members = garment.panel_members();
     let mut pieces: Vec<PassThrough> = (0..garment.panel_names.len())
