@@ -90,7 +90,7 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             let then = if s.welded {
                 format!("welded where they stood (pull at {} times full)", s.pull_factor)
             } else {
-                format!("pull raised to {} times full", s.pull_factor)
+                format!("pull at {} times full from then on", s.pull_factor)
             };
             writeln!(out, "| {} | {} | {:.2} | {then} |", s.step, s.seam, 1e3 * s.gap)?;
         }

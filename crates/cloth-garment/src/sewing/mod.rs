@@ -152,7 +152,7 @@ pub fn sew(
     let mut cg = 0;
     let (mut seam, mut gap) = garment.widest_gap(sim.positions());
     let mut steps = 0;
-    let (mut boost, mut stall) = (1.0f64, Stall::new(settings));
+    let (mut pull_level, mut stall) = (PullLevel::new(), Stall::new(settings));
     let mut stalls = Vec::new();
     while gap >= settings.gap_tolerance {
         if steps == settings.max_steps {
@@ -166,7 +166,7 @@ pub fn sew(
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
         if ramp >= 1.0 && stall.stalled(gap, steps) {
             let seam = garment.seams[seam].name.clone();
-            if boost >= MAX_BOOST {
+            if pull_level.at_most() {
                 // Held open against any pull: closed by welding where they stand, if near.
                 let weld = FORCED_WELD * spacing;
                 if gap > weld {
@@ -174,7 +174,7 @@ pub fn sew(
                         steps,
                         seam,
                         gap_mm: 1e3 * gap,
-                        pull_factor: boost,
+                        pull_factor: pull_level.boost,
                         weld_mm: 1e3 * weld,
                     });
                 }
@@ -182,39 +182,59 @@ pub fn sew(
                     step: steps,
                     seam,
                     gap,
-                    pull_factor: boost,
+                    pull_factor: pull_level.boost,
                     welded: true,
                 });
                 break;
             }
-            boost = (BOOST_STEP * boost).min(MAX_BOOST);
+            pull_level.raise();
             stalls.push(SeamStall {
                 step: steps,
                 seam,
                 gap,
-                pull_factor: boost,
+                pull_factor: pull_level.boost,
                 welded: false,
             });
         }
-        let force = pull * boost * ramp.max(1e-3);
+        let force = pull * pull_level.boost * ramp.max(1e-3);
         // Past STIFF_BOOST the spring's reach grows instead of its stiffness, so its pull
         // at a wide gap keeps growing while the system's conditioning does not.
-        let reach = settings.reach * (boost / STIFF_BOOST).max(1.0);
+        let reach = settings.reach * (pull_level.boost / STIFF_BOOST).max(1.0);
         sim.set_seam_pull(SeamPull {
             stiffness: force / reach,
             reach,
             damping: settings.closing_speed.map_or(0.0, |v| force / v),
         })?;
-        let stats = sim.step().map_err(|source| match source {
-            SimError::Interrupted { .. } => GarmentError::Stopped {
-                stage: "sewing",
-                steps,
-            },
-            source => GarmentError::Sim {
-                stage: "sewing",
-                source,
-            },
-        })?;
+        let stats = match sim.step() {
+            Ok(stats) => stats,
+            Err(SimError::Interrupted { .. }) => {
+                return Err(GarmentError::Stopped {
+                    stage: "sewing",
+                    steps,
+                })
+            }
+            // A raised pull the cloth cannot follow even in the shortest steps (a seam
+            // held 12 cm open by a skirt caught round the body diverged at 256 times):
+            // the state is that of the last whole step, and the pull goes back to the
+            // last level that held, for good; stalled there, the seams are welded if near
+            // or the sewing fails naming the seam.
+            Err(_) if pull_level.lower() => {
+                stalls.push(SeamStall {
+                    step: steps,
+                    seam: garment.seams[seam].name.clone(),
+                    gap,
+                    pull_factor: pull_level.boost,
+                    welded: false,
+                });
+                continue;
+            }
+            Err(source) => {
+                return Err(GarmentError::Sim {
+                    stage: "sewing",
+                    source,
+                })
+            }
+        };
         steps += 1;
         cg += stats.cg_iterations;
         (seam, gap) = garment.widest_gap(sim.positions());
@@ -388,6 +408,42 @@ const STIFF_BOOST: f64 = 16.0;
 /// far less.
 const STALL_WINDOW: f64 = 0.5;
 
+/// How far the pull is raised over its full strength, and how far it may be.
+struct PullLevel {
+    boost: f64,
+    /// [`MAX_BOOST`], or the last level that held once a raised pull tore the cloth
+    /// apart faster than any step could follow.
+    ceiling: f64,
+}
+
+impl PullLevel {
+    fn new() -> Self {
+        Self {
+            boost: 1.0,
+            ceiling: MAX_BOOST,
+        }
+    }
+
+    fn at_most(&self) -> bool {
+        self.boost >= self.ceiling
+    }
+
+    fn raise(&mut self) {
+        self.boost = (BOOST_STEP * self.boost).min(self.ceiling);
+    }
+
+    /// Back to the level before the last raise, for good; false if the pull was not
+    /// raised (there is nothing to go back to).
+    fn lower(&mut self) -> bool {
+        if self.boost <= 1.0 {
+            return false;
+        }
+        self.ceiling = (self.boost / BOOST_STEP).max(1.0);
+        self.boost = self.ceiling;
+        true
+    }
+}
+
 /// Watches the widest gap once the pull is at full strength: when [`STALL_WINDOW`] of
 /// sewing has not narrowed it by a tenth, the seams have stalled (held open by cloth that
 /// will not give at the pull's strength: unbuckled cells beside a gather, a fold pressed on
@@ -453,6 +509,33 @@ fn slacken_gathers(garment: &Garment, cell: f64, fabrics: &mut Vec<Fabric>, tria
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_pull_that_tears_the_cloth_goes_back_to_the_last_level_that_held_for_good() {
+        let mut level = PullLevel::new();
+        for _ in 0..3 {
+            level.raise();
+        }
+        assert_eq!(level.boost, 64.0);
+        assert!(!level.at_most());
+        // Torn at 64 times: back to 16, and no higher from then on.
+        assert!(level.lower());
+        assert_eq!(level.boost, 16.0);
+        assert!(level.at_most());
+        level.raise();
+        assert_eq!(level.boost, 16.0);
+        // Down to the pull's own strength, then nothing is left to lower: the step's
+        // failure is the sewing's.
+        assert!(level.lower() && level.lower());
+        assert_eq!(level.boost, 1.0);
+        assert!(!level.lower());
+        // Untorn, it rises to the most there is.
+        let mut level = PullLevel::new();
+        while !level.at_most() {
+            level.raise();
+        }
+        assert_eq!(level.boost, MAX_BOOST);
+    }
 
     #[test]
     fn a_gap_that_does_not_narrow_for_half_a_second_is_a_stall() {
