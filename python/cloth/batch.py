@@ -686,8 +686,9 @@ class DrapeResult:
     pattern, as ``summary.json`` holds them: ``name``, ``pattern``, ``outcome``,
     ``skipped``, ``failure``, ``seconds``, ``particles``, ``sewing_steps``,
     ``draping_steps``, ``drape_ended``, ``self_intersections``, ``body_intersections``,
-    ``deepest_penetration`` (m), ``max_warp``, ``max_weft``, ``p99_warp``, ``p99_weft``
-    (%))."""
+    ``thin_parts_passed`` (crossings of the body's thin parts by panels dressing the legs,
+    which pass them), ``deepest_penetration`` (m), ``max_warp``, ``max_weft``,
+    ``p99_warp``, ``p99_weft`` (%))."""
 
     batch: BatchResult
     entries: list[dict[str, Any]]
