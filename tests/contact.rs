@@ -447,12 +447,10 @@ fn a_fast_sheet_does_not_pass_through_a_thin_plate() {
     assert!((lowest - setup.thickness).abs() < 1e-3, "resting at z = {lowest}");
 }
 
-/// A 30 cm sheet standing across a 3 cm thick slab (a hand through a panel), moving at
-/// 0.5 m/s along its normal for 0.2 s, with its whole area passing through the bodies or
-/// not; the sheet's positions after.
-fn sheet_through_a_hand(pass: bool) -> (Vec<Vec3>, Simulation, Arc<cloth::collide::Bodies>) {
+/// A 3 cm thick slab (a hand) and a 30 cm sheet standing across it (a panel through it).
+fn hand_and_sheet() -> (Arc<cloth::collide::Bodies>, cloth::ClothMesh) {
     use cloth::collide::{Body, TriSurface};
-    use cloth::{Fabric, GridBuilder, PassThrough, SimulationBuilder, SolverSettings};
+    use cloth::GridBuilder;
     let hand = TriSurface::cuboid(Vec3::new(0.015, 0.04, 0.045)).unwrap();
     let bodies = Arc::new(Bodies::new(vec![Body::new("hand", hand)]));
     let mesh = GridBuilder::new(31, 31)
@@ -461,6 +459,15 @@ fn sheet_through_a_hand(pass: bool) -> (Vec<Vec3>, Simulation, Arc<cloth::collid
         .axes(Vec3::y(), Vec3::z())
         .build()
         .unwrap();
+    (bodies, mesh)
+}
+
+/// A 30 cm sheet standing across a 3 cm thick slab (a hand through a panel), moving at
+/// 0.5 m/s along its normal for 0.2 s, with its whole area passing through the bodies or
+/// not; the sheet's positions after.
+fn sheet_through_a_hand(pass: bool) -> (Vec<Vec3>, Simulation, Arc<cloth::collide::Bodies>) {
+    use cloth::{Fabric, PassThrough, SimulationBuilder, SolverSettings};
+    let (bodies, mesh) = hand_and_sheet();
     let n = mesh.vertex_count();
     let inside = mesh
         .positions()
@@ -527,18 +534,8 @@ fn a_sheet_placed_through_a_hand_passes_out_of_it_whole_then_is_held_by_it() {
 
 #[test]
 fn a_sheet_passing_a_hand_for_good_stays_through_it_and_its_crossings_are_counted_apart() {
-    use cloth::collide::{Body, TriSurface};
-    use cloth::{
-        count_body_intersections, Fabric, GridBuilder, PassThrough, SimulationBuilder, SolverSettings,
-    };
-    let hand = TriSurface::cuboid(Vec3::new(0.015, 0.04, 0.045)).unwrap();
-    let bodies = Arc::new(Bodies::new(vec![Body::new("hand", hand)]));
-    let mesh = GridBuilder::new(31, 31)
-        .size(0.3, 0.3)
-        .origin(Vec3::new(0.003, -0.15, -0.15))
-        .axes(Vec3::y(), Vec3::z())
-        .build()
-        .unwrap();
+    use cloth::{count_body_intersections, Fabric, PassThrough, SimulationBuilder, SolverSettings};
+    let (bodies, mesh) = hand_and_sheet();
     let n = mesh.vertex_count();
     let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like().with_damping(0.01))
         .settings(SolverSettings {
