@@ -134,6 +134,7 @@ impl SceneFile {
                         .into_iter()
                         .map(SceneWarning::Layers),
                 );
+                warnings.extend(garment.find_touching().into_iter().map(SceneWarning::Touching));
                 warnings.extend(
                     garment
                         .move_out_of(&bodies)

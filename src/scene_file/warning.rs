@@ -1,7 +1,7 @@
 //! What a scene loads with that the user should know: the run goes on.
 
 use crate::collide::SurfaceDefect;
-use crate::garment::{Layers, PlacementWarning};
+use crate::garment::{Layers, PlacementWarning, Touching};
 
 /// One thing found while preparing a scene, with what was done about it.
 #[derive(Debug, Clone, PartialEq)]
@@ -12,6 +12,8 @@ pub enum SceneWarning {
     Placement(PlacementWarning),
     /// Panels overlap in one plane: they were set apart into layers.
     Layers(Layers),
+    /// Panels touch where no seam joins them: they do not collide there while sewn.
+    Touching(Touching),
     /// A seam's sides differ in length by more than ease: the longer is gathered.
     Gather(crate::garment::Gather),
 }
@@ -22,6 +24,7 @@ impl std::fmt::Display for SceneWarning {
             Self::Body { body, defect } => write!(f, "{body}: {defect}"),
             Self::Placement(w) => w.fmt(f),
             Self::Layers(l) => l.fmt(f),
+            Self::Touching(t) => t.fmt(f),
             Self::Gather(g) => g.fmt(f),
         }
     }

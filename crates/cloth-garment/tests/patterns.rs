@@ -534,3 +534,69 @@ b = { panel = "lower", edge = 2 }
     // Layered once, they no longer overlap in one plane.
     assert!(garment.layer_overlapping(0.002).is_empty());
 }
+
+#[test]
+fn panels_touching_where_no_seam_joins_them_are_found() {
+    // In one plane: 'left' and 'right' meet at one corner only, as GarmentCode's godets
+    // do; 'top' lies edge to edge on 'left' and is sewn to it there.
+    let text = r#"
+units = "cm"
+[[panels]]
+name = "left"
+outline = [{ start = [-20, 0] }, { start = [0, 0] }, { start = [0, 20] }, { start = [-20, 20] }]
+placement = { rotation = [90, 0, 0], translation = [0, -20, 80] }
+[[panels]]
+name = "right"
+outline = [{ start = [0, -20] }, { start = [20, -20] }, { start = [20, 0] }, { start = [0, 0] }]
+placement = { rotation = [90, 0, 0], translation = [0, -20, 80] }
+[[panels]]
+name = "top"
+outline = [{ start = [-20, 20] }, { start = [0, 20] }, { start = [0, 40] }, { start = [-20, 40] }]
+placement = { rotation = [90, 0, 0], translation = [0, -20, 80] }
+[[seams]]
+a = { panel = "left", edge = 2 }
+b = { panel = "top", edge = 0 }
+"#;
+    let pattern = Pattern::from_toml_str(text, "corners.toml").unwrap();
+    let mut garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
+    let found = garment.find_touching();
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].panels, ["left", "right"]);
+    assert_eq!(found[0].points, 1);
+    assert!(
+        found[0]
+            .to_string()
+            .contains("touch at 1 point where no seam joins them"),
+        "{}",
+        found[0]
+    );
+    // The pair kept for the sewing is the corner: at (0, -0.2, 0.8), one particle of each.
+    assert_eq!(garment.touching.len(), 1);
+    let [i, j] = garment.touching[0];
+    let x = garment.mesh.positions();
+    let corner = cloth_core::Vec3::new(0.0, -0.2, 0.8);
+    assert!(
+        (x[i] - corner).norm() < 1e-9 && (x[j] - corner).norm() < 1e-9,
+        "{:?} {:?}",
+        x[i],
+        x[j]
+    );
+    let panel_of = |p: usize| {
+        let t = garment
+            .mesh
+            .triangles()
+            .iter()
+            .position(|t| t.contains(&p))
+            .unwrap();
+        garment.triangle_panel[t]
+    };
+    assert_ne!(panel_of(i), panel_of(j));
+    // Moved apart, nothing touches.
+    let mut apart = garment.clone();
+    let right: Vec<usize> = (0..x.len()).filter(|&p| panel_of(p) == 1).collect();
+    apart
+        .mesh
+        .translate_vertices(&right, cloth_core::Vec3::new(0.01, 0.0, 0.0));
+    assert!(apart.find_touching().is_empty());
+    assert!(apart.touching.is_empty());
+}

@@ -27,6 +27,7 @@ pub struct SimulationBuilder {
     collider: Option<Arc<dyn Collider>>,
     seams: Vec<[usize; 2]>,
     seam_weights: Option<Vec<f64>>,
+    touching: Vec<[usize; 2]>,
     pass_through: Vec<PassThrough>,
     bending_calibration: Option<Vec<[f64; 2]>>,
 }
@@ -43,6 +44,7 @@ impl SimulationBuilder {
             collider: None,
             seams: Vec::new(),
             seam_weights: None,
+            touching: Vec::new(),
             pass_through: Vec::new(),
             bending_calibration: None,
         }
@@ -83,6 +85,16 @@ impl SimulationBuilder {
     /// whose particles are light, is not pulled as hard as one on a long piece.
     pub fn seam_weights(mut self, weights: Vec<f64>) -> Self {
         self.seam_weights = Some(weights);
+        self
+    }
+    /// Particle pairs of different pieces that touch at the start with no seam joining
+    /// them: GarmentCode lays the godets of a skirt side by side, each meeting the next at
+    /// a hem corner. Self-collision counts each pair as one particle, as it does seam
+    /// partners, so the cloth round the point is not held there by its own contact (the
+    /// corners, glued, were drawn out to three times their length while the rest of the
+    /// godets was sewn); nothing pulls them.
+    pub fn touching(mut self, pairs: Vec<[usize; 2]>) -> Self {
+        self.touching = pairs;
         self
     }
     /// Cloth of several fabrics (a garment's panels): triangle `t` is of
@@ -180,12 +192,14 @@ impl SimulationBuilder {
                 "a positive thickness in m",
             )?;
         }
-        if let Some(&[a, b]) = self.seams.iter().find(|&&[a, b]| a >= n || b >= n || a == b) {
-            return Err(ParamError::OutOfRange {
-                name: "seams",
-                value: a.max(b) as f64,
-                expected: "pairs of two different particles of the mesh",
-            });
+        for (name, pairs) in [("seams", &self.seams), ("touching", &self.touching)] {
+            if let Some(&[a, b]) = pairs.iter().find(|&&[a, b]| a >= n || b >= n || a == b) {
+                return Err(ParamError::OutOfRange {
+                    name,
+                    value: a.max(b) as f64,
+                    expected: "pairs of two different particles of the mesh",
+                });
+            }
         }
         if let Some(&i) = self
             .pass_through
@@ -251,7 +265,8 @@ impl SimulationBuilder {
             c.particles.set_pass_through(self.pass_through.clone());
             c
         });
-        let mut self_contacts = self_contacts_for(&self.mesh, &self.seams, &self.settings, &model, &pinned);
+        let joined: Vec<[usize; 2]> = self.seams.iter().chain(&self.touching).copied().collect();
+        let mut self_contacts = self_contacts_for(&self.mesh, &joined, &self.settings, &model, &pinned);
         let tangles = self_contacts.as_mut().map_or_else(Vec::new, |sc| sc.untangle(&x));
         let pin_count = pins.len();
         let filter_capacity = if contacts.is_some() { n } else { pin_count };
@@ -265,6 +280,7 @@ impl SimulationBuilder {
             pinned,
             contacts,
             seams: self.seams,
+            joined,
             self_contacts,
             tangles,
             x,
@@ -336,6 +352,9 @@ pub struct Simulation {
     pub(super) contacts: Option<Contacts>,
     /// The seams' particle pairs (exempt from self-collision until welded).
     pub(super) seams: Vec<[usize; 2]>,
+    /// The seams' pairs and those touching at the start (see
+    /// [`SimulationBuilder::touching`]): one particle each to the self-collision.
+    pub(super) joined: Vec<[usize; 2]>,
     pub(super) self_contacts: Option<SelfContacts>,
     /// The pieces of the cloth found passing through each other at the start.
     pub(super) tangles: Vec<Tangle>,
@@ -423,7 +442,7 @@ impl Simulation {
         settings.validate()?;
         if settings.self_collision != self.settings.self_collision {
             self.self_contacts =
-                self_contacts_for(&self.mesh, &self.seams, &settings, &self.model, &self.pinned);
+                self_contacts_for(&self.mesh, &self.joined, &settings, &self.model, &self.pinned);
             // The new self-collision finds again what still passes through itself.
             let now = self
                 .self_contacts
@@ -881,7 +900,7 @@ impl Simulation {
             Some(sc) => sc.intersections(&self.x),
             None => crate::self_contact::count_self_intersections(
                 &self.mesh,
-                &self.seams,
+                &self.joined,
                 self.self_exemption_radius(),
                 &self.x,
             ),
@@ -982,7 +1001,7 @@ impl Simulation {
             Some(sc) => sc.closest_approach(&self.x, within),
             None => crate::self_contact::closest_self_approach(
                 &self.mesh,
-                &self.seams,
+                &self.joined,
                 self.self_exemption_radius(),
                 &self.x,
                 within,

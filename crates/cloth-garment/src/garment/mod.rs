@@ -6,12 +6,14 @@ mod gathering;
 mod layers;
 mod placement_check;
 mod size;
+mod touching;
 mod weld;
 
 pub use error::GarmentError;
 pub use layers::Layers;
 pub use placement_check::PlacementWarning;
 pub use size::{triangles_in, DEFAULT_MAX_TRIANGLES};
+pub use touching::{Touching, TOUCH};
 pub use weld::Welded;
 
 use crate::meshing::mesh_region;
@@ -60,6 +62,9 @@ pub struct Garment {
     /// The panels placed through a thin part of a body, to pass through it while sewn (see
     /// [`Garment::move_out_of`]).
     pub passing: Vec<PassThrough>,
+    /// Particle pairs of different panels touching at the start where no seam joins them
+    /// (see [`Garment::find_touching`]).
+    pub touching: Vec<[usize; 2]>,
 }
 
 impl GarmentBuilder {
@@ -222,6 +227,7 @@ impl GarmentBuilder {
             panel_dresses: pattern.panels.iter().map(|p| p.dresses).collect(),
             gathered,
             passing: Vec::new(),
+            touching: Vec::new(),
         })
     }
 }

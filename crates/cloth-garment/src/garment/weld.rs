@@ -12,10 +12,10 @@ pub struct Welded {
 }
 
 impl Garment {
-    /// Welds every seam pair at `positions` (each particle at the mean of the vertices it
-    /// joins). Triangles keep their panels' material coordinates per corner, so the rest
-    /// state is unchanged; edges and hinges are rebuilt across the seams.
-    pub fn weld(&self, positions: &[Vec3]) -> Result<Welded, GarmentError> {
+    /// The particle each vertex of the unsewn mesh becomes when the seams are welded,
+    /// numbered from 0 in the order of their first vertices: vertices a seam joins,
+    /// directly or through others, share one.
+    pub(crate) fn seam_groups(&self) -> Vec<usize> {
         let n = self.mesh.vertex_count();
         let mut parent: Vec<usize> = (0..n).collect();
         fn root(parent: &mut [usize], mut i: usize) -> usize {
@@ -32,17 +32,27 @@ impl Garment {
             }
         }
         let mut particle_of = vec![usize::MAX; n];
-        let mut sum: Vec<(Vec3, f64)> = Vec::new();
+        let mut count = 0;
         for i in 0..n {
             let r = root(&mut parent, i);
             if particle_of[r] == usize::MAX {
-                particle_of[r] = sum.len();
-                sum.push((Vec3::zeros(), 0.0));
+                particle_of[r] = count;
+                count += 1;
             }
             particle_of[i] = particle_of[r];
-            let s = &mut sum[particle_of[i]];
-            s.0 += positions[i];
-            s.1 += 1.0;
+        }
+        particle_of
+    }
+
+    /// Welds every seam pair at `positions` (each particle at the mean of the vertices it
+    /// joins). Triangles keep their panels' material coordinates per corner, so the rest
+    /// state is unchanged; edges and hinges are rebuilt across the seams.
+    pub fn weld(&self, positions: &[Vec3]) -> Result<Welded, GarmentError> {
+        let particle_of = self.seam_groups();
+        let mut sum = vec![(Vec3::zeros(), 0.0); particle_of.iter().max().map_or(0, |&k| k + 1)];
+        for (i, &k) in particle_of.iter().enumerate() {
+            sum[k].0 += positions[i];
+            sum[k].1 += 1.0;
         }
         let welded_positions = sum.iter().map(|(p, count)| p / *count).collect();
         let triangles: Vec<[usize; 3]> = self

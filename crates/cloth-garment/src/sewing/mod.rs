@@ -144,6 +144,7 @@ pub fn sew(
         .settings(solver)
         .seams(garment.seam_pairs())
         .seam_weights(seam_weights)
+        .touching(garment.touching.clone())
         .pass_through(sewing_passes(garment))
         .collider(collider)
         .build()?;
