@@ -217,8 +217,7 @@ pub fn sew(
             // A raised pull the cloth cannot follow even in the shortest steps: the state
             // is that of the last whole step, and the pull goes back to the last level
             // that held, for good; stalled there, the seams are welded if near or the
-            // sewing fails naming the seam. (It does not bound the stretch a raised pull
-            // leaves without diverging: GarmentCode's rand_1_022 was torn to 470 % first.)
+            // sewing fails naming the seam.
             Err(_) if pull_level.lower() => {
                 stalls.push(SeamStall {
                     step: steps,
@@ -239,6 +238,18 @@ pub fn sew(
         steps += 1;
         cg += stats.cg_iterations;
         (seam, gap) = garment.widest_gap(sim.positions());
+        // A raised pull that tears the cloth without diverging goes back as one that
+        // diverges does: GarmentCode's rand_1_022 was stretched to 470 % (p99) by pulls
+        // of 64 and 256 times, and every step from there diverged, down to the pull's own.
+        if pull_level.boost > 1.0 && torn(sim.mesh(), sim.positions()) && pull_level.lower() {
+            stalls.push(SeamStall {
+                step: steps,
+                seam: garment.seams[seam].name.clone(),
+                gap,
+                pull_factor: pull_level.boost,
+                welded: false,
+            });
+        }
         let progress = SewingProgress {
             gap,
             seam: &garment.seams[seam].name,
@@ -404,6 +415,17 @@ pub const FORCED_WELD: f64 = 0.5;
 /// reach; beyond, a spring of that stiffness over a longer reach.
 const STIFF_BOOST: f64 = 16.0;
 
+/// A raised pull that stretches the cloth's most stretched hundredth past this (in
+/// percent, warp or weft) tears it instead of closing a seam: GarmentCode's pencil skirts,
+/// closed at 1,024 times the pull round hips as wide as them, keep under 20 %.
+const TORN_P99: f64 = 50.0;
+
+/// Whether the cloth at `x` is torn (see [`TORN_P99`]).
+fn torn(mesh: &cloth_core::ClothMesh, x: &[Vec3]) -> bool {
+    let strain = cloth_core::StrainReport::new(mesh, x);
+    strain.p99_warp.max(strain.p99_weft) > TORN_P99
+}
+
 /// How long the widest gap may take to narrow by a tenth before the seams count as
 /// stalled, s: a pair closing freely does so at the closing speed, a tenth of any gap in
 /// far less.
@@ -536,6 +558,34 @@ mod tests {
             level.raise();
         }
         assert_eq!(level.boost, MAX_BOOST);
+    }
+
+    #[test]
+    fn cloth_stretched_past_half_its_length_in_a_hundredth_of_it_is_torn() {
+        // A strip of 100 cells along the warp, `stretched` of them drawn out by 60 %.
+        let strip = |stretched: usize| {
+            let mesh = cloth_core::GridBuilder::new(101, 2)
+                .size(1.0, 0.01)
+                .build()
+                .unwrap();
+            let mut x = mesh.positions().to_vec();
+            let mut shift = 0.0;
+            for i in 0..101 {
+                if i > 0 && i <= stretched {
+                    shift += 0.6 * 0.01;
+                }
+                for j in 0..2 {
+                    x[j * 101 + i].x += shift;
+                }
+            }
+            torn(&mesh, &x)
+        };
+        assert!(!strip(0));
+        // One cell is 2 of the 200 triangles: under the 99th percentile; two are over.
+        assert!(!strip(1));
+        assert!(strip(2));
+        assert!(strip(3));
+        assert!(strip(100));
     }
 
     #[test]
