@@ -80,6 +80,13 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
     if let Some(gap) = report.largest_seam_gap {
         writeln!(out, "| largest seam gap | {:.2} mm |", 1e3 * gap)?;
     }
+    if let Some(c) = report.weld_crossings.filter(|c| c.found > 0) {
+        writeln!(
+            out,
+            "| crossings the weld made (cloth caught between a seam's sides), found / left after moving it out | {} / {} |",
+            c.found, c.left
+        )?;
+    }
     if !report.seam_stalls.is_empty() {
         writeln!(
             out,

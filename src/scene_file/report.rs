@@ -120,6 +120,9 @@ pub struct RunReport {
     pub largest_seam_gap: Option<f64>,
     /// When seams stopped closing while sewn, and how the pull was raised to close them.
     pub seam_stalls: Vec<crate::garment::sewing::SeamStall>,
+    /// The cloth's crossings the weld made, and those left after clearing them (garments
+    /// that were sewn only).
+    pub weld_crossings: Option<crate::garment::sewing::WeldCrossings>,
     /// Pieces of the cloth (panels) found through each other at the start of a stage,
     /// exempt from each other until they came apart.
     pub tangles: Vec<TangleRecord>,

@@ -46,6 +46,7 @@ impl Prepared {
         let outcome;
         let mut gap = None;
         let mut seam_stalls = Vec::new();
+        let mut weld_crossings = None;
         let mut sheet_test = None;
         // Names the piece of the cloth a triangle is of (a garment's panels keep their
         // triangles' order through welding).
@@ -81,6 +82,7 @@ impl Prepared {
                     Ok(sewn) => {
                         stages.push(rec.end("sewn"));
                         gap = Some(sewn.report.max_gap);
+                        weld_crossings = Some(sewn.report.weld_crossings);
                         rec.begin("draping", drape_settings.max_steps);
                         match drape(
                             &sewn,
@@ -176,6 +178,7 @@ impl Prepared {
             thin_parts_passed: body.thin_parts_passed,
             largest_seam_gap: gap,
             seam_stalls,
+            weld_crossings,
             tangles,
             checkpoints,
             measurement,

@@ -114,6 +114,37 @@ pub fn count_self_intersections(
     count(&Topology::new(mesh, seams, rest_radius), x)
 }
 
+/// The intersecting (edge, triangle) pairs of `mesh` at `x`, exempt as for
+/// [`count_self_intersections`], sorted.
+pub fn self_intersecting_pairs(
+    mesh: &ClothMesh,
+    seams: &[[usize; 2]],
+    rest_radius: f64,
+    x: &[Vec3],
+) -> Vec<(usize, usize)> {
+    let topology = Topology::new(mesh, seams, rest_radius);
+    let tris = &topology.triangles;
+    let tree = triangle_tree(&topology, x);
+    let mut pairs: Vec<(usize, usize)> = (0..topology.edges.len())
+        .into_par_iter()
+        .flat_map_iter(|e| {
+            let [a, b] = topology.edges[e];
+            let (p, q) = (x[a as usize], x[b as usize]);
+            let mut found = Vec::new();
+            tree.query(&Aabb::of([p, q]), |t| {
+                if !topology.edge_triangle_exempt(e, t)
+                    && segment_crosses_triangle(&p, &q, &tris[t].map(|i| x[i as usize]))
+                {
+                    found.push((e, t));
+                }
+            });
+            found
+        })
+        .collect();
+    pairs.sort_unstable();
+    pairs
+}
+
 /// The smallest distance of a particle from a triangle of the cloth, pairs sharing a
 /// particle (or seam partners) exempt, if one is under `within` (m).
 pub(crate) fn closest_approach(topology: &Topology, x: &[Vec3], within: f64) -> Option<f64> {

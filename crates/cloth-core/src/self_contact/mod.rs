@@ -33,7 +33,9 @@ mod settings;
 mod surface;
 mod topology;
 
-pub use intersections::{closest_self_approach, count_self_intersections, Intersections};
+pub use intersections::{
+    closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections,
+};
 
 /// Two pieces of the cloth (charts: panels, for a garment) that passed through each other
 /// when the simulation began. Held apart, they would stay hooked through each other, so

@@ -2,8 +2,10 @@
 //! the seams, then drape with gravity on until at rest.
 
 mod settings;
+mod weld_crossings;
 
 pub use settings::{DrapeSettings, SewingSettings};
+pub use weld_crossings::WeldCrossings;
 
 use crate::garment::{Garment, GarmentError, Welded};
 use crate::pattern::BodyPart;
@@ -28,6 +30,8 @@ pub struct SewingReport {
     pub pull: f64,
     /// Each time the seams stalled, and how the pull was raised to close them.
     pub stalls: Vec<SeamStall>,
+    /// The cloth's crossings the weld made, and those left after clearing them.
+    pub weld_crossings: WeldCrossings,
 }
 
 /// Seams that stopped closing: the widest then, and what was done.
@@ -139,6 +143,7 @@ pub fn sew(
         self_collision: settings.self_collision,
         ..SolverSettings::default()
     };
+    let bodies = collider.clone();
     let mut sim = SimulationBuilder::new(garment.mesh.clone(), fabrics[0].clone())
         .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
@@ -262,7 +267,14 @@ pub fn sew(
             });
         }
     }
-    let welded = garment.weld(sim.positions())?;
+    let mut welded = garment.weld(sim.positions())?;
+    let weld_crossings = weld_crossings::clear(
+        &mut welded,
+        bodies.as_ref(),
+        sim.time(),
+        sim.self_exemption_radius(),
+        spacing,
+    );
     let map = |ids: &[usize]| {
         let mut out: Vec<usize> = ids.iter().map(|&i| welded.particle_of[i]).collect();
         out.sort_unstable();
@@ -289,6 +301,7 @@ pub fn sew(
             max_gap: gap,
             pull,
             stalls,
+            weld_crossings,
         },
         bending_calibration: sim.bending_calibration().to_vec(),
     })
