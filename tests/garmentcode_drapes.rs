@@ -4,8 +4,9 @@
 //! each ends at rest, passes through neither itself nor the body, barely stretches, and
 //! hangs on the body where it belongs, centred, not off one side.
 
-use cloth::scene_file::{RunObserver, RunOutcome, SceneFile};
-use cloth::{Simulation, StepStats, Vec3};
+use cloth::garment::sewing::sew;
+use cloth::scene_file::{PreparedCloth, RunObserver, RunOutcome, SceneFile};
+use cloth::{Interrupt, Simulation, StepStats, Vec3};
 use std::ops::ControlFlow;
 use std::path::Path;
 
@@ -111,4 +112,56 @@ fn trousers_gathered_into_their_waistband_hang_from_the_waist() {
         design: "rand_1_002",
         top: 1.05..1.18,
     });
+}
+
+/// Sews GarmentCode's rand_1_079 at 3 cm, its godets' touching corners given to the
+/// sewing or not; returns the warnings and how the sewing ended.
+fn sew_godets(
+    touching: bool,
+) -> (
+    Vec<String>,
+    Result<cloth::garment::sewing::Sewn, cloth::garment::GarmentError>,
+) {
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
+    let text = "name = \"rand_1_079\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\nup_axis = \"y\"\n\
+                [cloth.garment]\nedge_length = 0.03\npattern = \"patterns/rand_1_079.json\"\n\
+                [fabric]\npreset = \"cotton_poplin\"\n";
+    let scene = SceneFile::from_toml_str(text, "scene.toml").unwrap();
+    let prepared = scene.prepare("scene.toml", &assets).unwrap();
+    let warnings = prepared.warnings.iter().map(ToString::to_string).collect();
+    let PreparedCloth::Garment { mut garment, fabrics } = prepared.cloth else {
+        panic!("a garment")
+    };
+    if !touching {
+        garment.touching.clear();
+    }
+    let sewn = sew(
+        &garment,
+        &fabrics,
+        prepared.bodies.clone(),
+        &scene.sewing_settings(),
+        &Interrupt::default(),
+        |_, _, _| ControlFlow::Continue(()),
+    );
+    (warnings, sewn)
+}
+
+#[test]
+fn godets_laid_corner_to_corner_part_and_are_sewn_into_their_slits() {
+    let (warnings, sewn) = sew_godets(true);
+    // GarmentCode lays the front and back godets side by side, each touching the next.
+    assert_eq!(
+        warnings.iter().filter(|w| w.contains("touch at 1 point")).count(),
+        4,
+        "{warnings:?}"
+    );
+    let sewn = sewn.unwrap();
+    assert!(sewn.report.stalls.is_empty(), "{:?}", sewn.report.stalls);
+    // Held at their corners by their own contact, the godets are not sewn.
+    let (_, held) = sew_godets(false);
+    assert!(
+        matches!(held, Err(cloth::garment::GarmentError::Stalled { .. })),
+        "{:?}",
+        held.map(|s| s.report)
+    );
 }
