@@ -30,32 +30,35 @@ fn triangle_tree(topology: &Topology, x: &[Vec3]) -> Bvh {
 }
 
 pub(crate) fn count(topology: &Topology, x: &[Vec3]) -> Intersections {
+    let pairs = crossing_pairs(topology, x);
+    Intersections {
+        count: pairs.len(),
+        first: pairs.first().copied(),
+    }
+}
+
+/// The (edge, triangle) pairs passing through each other at `x`, not exempt, sorted.
+fn crossing_pairs(topology: &Topology, x: &[Vec3]) -> Vec<(usize, usize)> {
     let tris = &topology.triangles;
     let tree = triangle_tree(topology, x);
-    (0..topology.edges.len())
+    let mut pairs: Vec<(usize, usize)> = (0..topology.edges.len())
         .into_par_iter()
-        .map(|e| {
+        .flat_map_iter(|e| {
             let [a, b] = topology.edges[e];
             let (p, q) = (x[a as usize], x[b as usize]);
-            let mut found = Intersections::default();
+            let mut found = Vec::new();
             tree.query(&Aabb::of([p, q]), |t| {
-                if topology.edge_triangle_exempt(e, t) {
-                    return;
-                }
-                if segment_crosses_triangle(&p, &q, &tris[t].map(|i| x[i as usize])) {
-                    found.count += 1;
-                    found.first = found.first.min(Some((e, t))).or(Some((e, t)));
+                if !topology.edge_triangle_exempt(e, t)
+                    && segment_crosses_triangle(&p, &q, &tris[t].map(|i| x[i as usize]))
+                {
+                    found.push((e, t));
                 }
             });
             found
         })
-        .reduce(Intersections::default, |a, b| Intersections {
-            count: a.count + b.count,
-            first: match (a.first, b.first) {
-                (Some(x), Some(y)) => Some(x.min(y)),
-                (x, y) => x.or(y),
-            },
-        })
+        .collect();
+    pairs.sort_unstable();
+    pairs
 }
 
 /// The edge-triangle pairs of different charts passing through each other at `x`, counted
@@ -122,27 +125,7 @@ pub fn self_intersecting_pairs(
     rest_radius: f64,
     x: &[Vec3],
 ) -> Vec<(usize, usize)> {
-    let topology = Topology::new(mesh, seams, rest_radius);
-    let tris = &topology.triangles;
-    let tree = triangle_tree(&topology, x);
-    let mut pairs: Vec<(usize, usize)> = (0..topology.edges.len())
-        .into_par_iter()
-        .flat_map_iter(|e| {
-            let [a, b] = topology.edges[e];
-            let (p, q) = (x[a as usize], x[b as usize]);
-            let mut found = Vec::new();
-            tree.query(&Aabb::of([p, q]), |t| {
-                if !topology.edge_triangle_exempt(e, t)
-                    && segment_crosses_triangle(&p, &q, &tris[t].map(|i| x[i as usize]))
-                {
-                    found.push((e, t));
-                }
-            });
-            found
-        })
-        .collect();
-    pairs.sort_unstable();
-    pairs
+    crossing_pairs(&Topology::new(mesh, seams, rest_radius), x)
 }
 
 /// The smallest distance of a particle from a triangle of the cloth, pairs sharing a

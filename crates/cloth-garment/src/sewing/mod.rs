@@ -160,6 +160,13 @@ pub fn sew(
     let mut steps = 0;
     let (mut pull_level, mut stall) = (PullLevel::new(), Stall::new(settings));
     let mut stalls = Vec::new();
+    let stall_at = |step: u64, seam: usize, gap: f64, pull_factor: f64, welded: bool| SeamStall {
+        step,
+        seam: garment.seams[seam].name.clone(),
+        gap,
+        pull_factor,
+        welded,
+    };
     while gap >= settings.gap_tolerance {
         if steps == settings.max_steps {
             return Err(GarmentError::NotSewn {
@@ -171,36 +178,23 @@ pub fn sew(
         }
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
         if ramp >= 1.0 && stall.stalled(gap, steps) {
-            let seam = garment.seams[seam].name.clone();
             if pull_level.at_most() {
                 // Held open against any pull: closed by welding where they stand, if near.
                 let weld = FORCED_WELD * spacing;
                 if gap > weld {
                     return Err(GarmentError::Stalled {
                         steps,
-                        seam,
+                        seam: garment.seams[seam].name.clone(),
                         gap_mm: 1e3 * gap,
                         pull_factor: pull_level.boost,
                         weld_mm: 1e3 * weld,
                     });
                 }
-                stalls.push(SeamStall {
-                    step: steps,
-                    seam,
-                    gap,
-                    pull_factor: pull_level.boost,
-                    welded: true,
-                });
+                stalls.push(stall_at(steps, seam, gap, pull_level.boost, true));
                 break;
             }
             pull_level.raise();
-            stalls.push(SeamStall {
-                step: steps,
-                seam,
-                gap,
-                pull_factor: pull_level.boost,
-                welded: false,
-            });
+            stalls.push(stall_at(steps, seam, gap, pull_level.boost, false));
         }
         let force = pull * pull_level.boost * ramp.max(1e-3);
         // Past STIFF_BOOST the spring's reach grows instead of its stiffness, so its pull
@@ -224,13 +218,7 @@ pub fn sew(
             // that held, for good; stalled there, the seams are welded if near or the
             // sewing fails naming the seam.
             Err(_) if pull_level.lower() => {
-                stalls.push(SeamStall {
-                    step: steps,
-                    seam: garment.seams[seam].name.clone(),
-                    gap,
-                    pull_factor: pull_level.boost,
-                    welded: false,
-                });
+                stalls.push(stall_at(steps, seam, gap, pull_level.boost, false));
                 continue;
             }
             Err(source) => {
@@ -247,13 +235,7 @@ pub fn sew(
         // diverges does: GarmentCode's rand_1_022 was stretched to 470 % (p99) by pulls
         // of 64 and 256 times, and every step from there diverged, down to the pull's own.
         if pull_level.boost > 1.0 && torn(sim.mesh(), sim.positions()) && pull_level.lower() {
-            stalls.push(SeamStall {
-                step: steps,
-                seam: garment.seams[seam].name.clone(),
-                gap,
-                pull_factor: pull_level.boost,
-                welded: false,
-            });
+            stalls.push(stall_at(steps, seam, gap, pull_level.boost, false));
         }
         let progress = SewingProgress {
             gap,
