@@ -87,6 +87,12 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             c.found, c.left
         )?;
     }
+    if let Some(n) = report.attached_particles.filter(|&n| n > 0) {
+        writeln!(
+            out,
+            "| particles of attached edges (a waist, a neckline), each held on one side of where it was placed | {n} |"
+        )?;
+    }
     if !report.seam_stalls.is_empty() {
         writeln!(
             out,

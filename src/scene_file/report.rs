@@ -123,6 +123,9 @@ pub struct RunReport {
     /// The cloth's crossings the weld made, and those left after clearing them (garments
     /// that were sewn only).
     pub weld_crossings: Option<crate::garment::sewing::WeldCrossings>,
+    /// Particles of the pattern's attached edges (a waist, a neckline), each held on one
+    /// side of where it was placed (garments only).
+    pub attached_particles: Option<usize>,
     /// Pieces of the cloth (panels) found through each other at the start of a stage,
     /// exempt from each other until they came apart.
     pub tangles: Vec<TangleRecord>,

@@ -47,6 +47,7 @@ impl Prepared {
         let mut gap = None;
         let mut seam_stalls = Vec::new();
         let mut weld_crossings = None;
+        let mut attached_particles = None;
         let mut sheet_test = None;
         // Names the piece of the cloth a triangle is of (a garment's panels keep their
         // triangles' order through welding).
@@ -54,6 +55,7 @@ impl Prepared {
         let (settings, rec) = match self.cloth {
             PreparedCloth::Garment { garment, fabrics } => {
                 let (panels, names) = (garment.triangle_panel.clone(), garment.panel_names.clone());
+                attached_particles = Some(garment.attached.iter().map(|(p, _)| p.len()).sum());
                 piece_of = Box::new(move |t| format!("panel '{}'", names[panels[t]]));
                 let mut rec = Recorder::new(
                     observer,
@@ -179,6 +181,7 @@ impl Prepared {
             largest_seam_gap: gap,
             seam_stalls,
             weld_crossings,
+            attached_particles,
             tangles,
             checkpoints,
             measurement,

@@ -25,6 +25,7 @@ pub use contact::{
     count_body_intersections, BodyIntersections, Collider, ContactMode, PassThrough, Proximity, SharpFeature,
     SurfacePoint,
 };
+pub use energy::attachment::Attachment;
 pub use error::{DivergenceReason, MeshError, ParamError, SimError};
 pub use fabric::{
     BendingLaw, BendingRigidity, Fabric, KesConversion, KesDirection, KesMeasurement, SourceCoefficients,

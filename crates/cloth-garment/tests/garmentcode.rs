@@ -705,3 +705,41 @@ fn seams_on_edges_shorter_than_a_cell_are_sewn_keeping_each_side_length() {
         assert!((d - length).abs() < 1e-9, "side {side}: {d} against {length}");
     }
 }
+
+#[test]
+fn labelled_edges_are_attached_as_garmentcodes_simulator_holds_them() {
+    // The front's top held up (a waist), its side at -x (the body's right) held from
+    // moving further to -x (a right neckline), its side at +x from moving further to +x;
+    // an armhole label holds nothing.
+    let edges = r#"[{"endpoints": [0, 1], "label": "right_armhole"},
+                    {"endpoints": [1, 2], "label": "left_collar"},
+                    {"endpoints": [2, 3], "label": "lower_interface"},
+                    {"endpoints": [3, 0], "label": "right_collar"}]"#;
+    let pattern = import(&squares(edges, SIDES, CM)).unwrap();
+    let front = pattern.panel_index("front").unwrap();
+    let held: Vec<(usize, Vec3)> = pattern
+        .attachments
+        .iter()
+        .map(|a| {
+            assert_eq!(a.edge.panel, front);
+            (a.edge.edge, a.direction)
+        })
+        .collect();
+    assert_eq!(held, vec![(1, -Vec3::x()), (2, Vec3::z()), (3, Vec3::x())]);
+    // Each edge's particles, and only theirs, are attached in the garment.
+    let garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
+    let x = garment.mesh.positions();
+    let counts: Vec<usize> = garment.attached.iter().map(|(p, _)| p.len()).collect();
+    assert_eq!(counts, vec![11, 11, 11], "20 cm at 2 cm: 11 particles an edge");
+    for (particles, d) in &garment.attached {
+        for &i in particles {
+            // Front at y = -0.15; its top at z = 1.2, its sides at x = -0.1 (right) and 0.1.
+            assert!((x[i].y + 0.15).abs() < 1e-6);
+            if *d == Vec3::z() {
+                assert!((x[i].z - 1.2).abs() < 1e-6);
+            } else {
+                assert!((x[i].x + 0.1 * d.x).abs() < 1e-6, "{} {}", x[i].x, d.x);
+            }
+        }
+    }
+}

@@ -600,3 +600,32 @@ b = { panel = "top", edge = 0 }
     assert!(apart.find_touching().is_empty());
     assert!(apart.touching.is_empty());
 }
+
+#[test]
+fn attachments_name_an_edge_and_the_way_it_is_free_to_move() {
+    let extra = r#"
+[[attachments]]
+panel = "back"
+edge = "top"
+direction = [0, 0, 2]
+"#;
+    let pattern = Pattern::from_toml_str(&tube(32.4, extra), "tube.toml").unwrap();
+    assert_eq!(pattern.attachments.len(), 1);
+    let a = &pattern.attachments[0];
+    assert_eq!((a.edge.panel, a.edge.edge), (1, 2));
+    assert_eq!(a.direction, cloth_core::Vec3::z(), "normalised");
+    for (bad, says) in [
+        (
+            extra.replace("\"top\"", "\"waist\""),
+            "panel 'back' has no edge 'waist'",
+        ),
+        (
+            extra.replace("[0, 0, 2]", "[0, 0, 0]"),
+            "attachment 0: the direction is not a direction",
+        ),
+        (extra.replace("\"back\"", "\"side\""), "no panel named 'side'"),
+    ] {
+        let e = error(&tube(32.4, &bad));
+        assert!(e.contains(says), "{e}");
+    }
+}

@@ -5,6 +5,7 @@
 //! is either the exact one (checked against finite differences in the tests) or the
 //! positive semi-definite form the implicit solver needs, selected by [`HessianMode`].
 
+pub mod attachment;
 pub mod bending;
 pub mod damping;
 pub mod particle;

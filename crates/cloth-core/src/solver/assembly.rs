@@ -6,7 +6,13 @@
 //! colours run in a fixed order, so the sums are the same for any thread count.
 
 use crate::energy::{
-    bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch, stretch::ThreadLaw,
+    attachment::{add_attachment, holds, Attachment},
+    bending,
+    damping::add_damping,
+    particle,
+    shear::add_shear,
+    stretch::add_stretch,
+    stretch::ThreadLaw,
     HessianMode, Local, TriangleRest,
 };
 use crate::fabric::{BendingLaw, Fabric};
@@ -45,6 +51,14 @@ struct SeamElement {
     v: [u32; 2],
     weight: f64,
     slots: [u32; 4],
+}
+
+/// A particle held on one side of a plane (see [`Attachment`]).
+#[derive(Debug, Clone)]
+struct AttachmentElement {
+    v: [u32; 1],
+    attachment: Attachment,
+    slots: [u32; 1],
 }
 
 /// How hard the seams pull: a zero-length spring of `stiffness` (N/m) per pair up to a
@@ -99,6 +113,11 @@ pub(crate) struct ForceModel {
     seam_colors: Vec<Range<usize>>,
     seam_energy: Vec<f64>,
     seam_pull: SeamPull,
+    attachments: Vec<AttachmentElement>,
+    attachment_colors: Vec<Range<usize>>,
+    attachment_energy: Vec<f64>,
+    /// Stiffness of the attachments' penalty, N/m.
+    attachment_stiffness: f64,
     masses: Vec<f64>,
     /// Each particle's share of `drag * area`, kg/s.
     vertex_drag: Vec<f64>,
@@ -111,7 +130,7 @@ impl ForceModel {
     /// Builds the elements and the matrix pattern they fill. Triangle `t` is of
     /// `fabrics[triangle_fabric[t]]` (as the builder checked); `seams` are the particle
     /// pairs that seam forces may pull together (see [`SeamPull`]), each with its weight in
-    /// `seam_weights`; `calibration` gives
+    /// `seam_weights`; `attachments` hold particles on one side of planes; `calibration` gives
     /// each fabric's bending calibration instead of computing it; hinges along a clamp of
     /// `pinned` particles are stiffened (see [`bending::clamp_factor`]).
     pub fn new(
@@ -120,6 +139,7 @@ impl ForceModel {
         triangle_fabric: &[usize],
         seams: &[[usize; 2]],
         seam_weights: &[f64],
+        attachments: &[Attachment],
         calibration: Option<Vec<[f64; 2]>>,
         pinned: &[bool],
     ) -> (Self, BlockSparse) {
@@ -197,6 +217,15 @@ impl ForceModel {
         let (tris, tri_colors) = color(tris, n, |e| &e.v);
         let (hinges, hinge_colors) = color(hinges, n, |e| &e.v);
         let (seams, seam_colors) = color(seams, n, |e| &e.v);
+        let attachments: Vec<AttachmentElement> = attachments
+            .iter()
+            .map(|a| AttachmentElement {
+                v: [a.particle as u32],
+                attachment: *a,
+                slots: slots(&[a.particle]).try_into().expect("1 slot"),
+            })
+            .collect();
+        let (attachments, attachment_colors) = color(attachments, n, |e| &e.v);
 
         let (mut masses, mut vertex_drag) = (vec![0.0; n], vec![0.0; n]);
         for e in &tris {
@@ -206,6 +235,9 @@ impl ForceModel {
                 vertex_drag[i as usize] += f.drag * e.rest.area / 3.0;
             }
         }
+        // As stiff as ten cells of the stiffest fabric: a waist holding up a skirt gives a
+        // small fraction of a cell.
+        let attachment_stiffness = 10.0 * fabrics.iter().map(Fabric::membrane_stiffness).fold(0.0, f64::max);
         let model = Self {
             tri_energy: vec![0.0; tris.len()],
             hinge_energy: vec![0.0; hinges.len()],
@@ -219,6 +251,10 @@ impl ForceModel {
             seams,
             seam_colors,
             seam_pull: SeamPull::default(),
+            attachment_energy: vec![0.0; attachments.len()],
+            attachments,
+            attachment_colors,
+            attachment_stiffness,
             masses,
             vertex_drag,
             bending_calibration: kappa,
@@ -392,6 +428,26 @@ impl ForceModel {
             self.seam_energy.iter_mut().for_each(|e| *e = 0.0);
         }
 
+        let k = self.attachment_stiffness;
+        let attachment_kernel = |e: &AttachmentElement, energy: &mut f64| {
+            let i = e.v[0] as usize;
+            *energy = 0.0;
+            if holds(&e.attachment, &x[i], &v[i], sink.h) {
+                let mut local = Local::<1>::default();
+                add_attachment(&e.attachment, k, &x[i], need_k, &mut local);
+                *energy = local.energy;
+                // SAFETY: as above.
+                unsafe { sink.put(&local, &e.v, &e.slots, ATTACHMENT_DAMPING) };
+            }
+        };
+        run_colored(
+            &self.attachments,
+            &self.attachment_colors,
+            &mut self.attachment_energy,
+            parallel,
+            attachment_kernel,
+        );
+
         let gravity_energy: f64 = x
             .iter()
             .zip(masses)
@@ -400,9 +456,15 @@ impl ForceModel {
         self.tri_energy.iter().sum::<f64>()
             + self.hinge_energy.iter().sum::<f64>()
             + self.seam_energy.iter().sum::<f64>()
+            + self.attachment_energy.iter().sum::<f64>()
             + gravity_energy
     }
 }
+
+/// Rayleigh damping of the attachments, s: GarmentCode's (a damping of 10 against a
+/// stiffness of 1,000), which stops a particle's motion along the normal within a step
+/// once it is held, instead of letting it bounce off the plane.
+const ATTACHMENT_DAMPING: f64 = 0.01;
 
 /// A seam pair's pull: `k d^2 / 2` up to the reach `r`, then `k r (d - r / 2)`, so the
 /// force is `k d` and then a constant `k r` along the gap. The Hessian is `k` times the
@@ -564,6 +626,7 @@ mod tests {
             &vec![0; mesh.triangles().len()],
             &SEAMS,
             &WEIGHTS,
+            &attachments(&mesh),
             None,
             &vec![false; mesh.vertex_count()],
         );
@@ -582,6 +645,25 @@ mod tests {
             .map(|_| Vec3::from_fn(|_, _| rng.random_range(-0.5..0.5)))
             .collect();
         (mesh, model, matrix, x, v)
+    }
+
+    /// Two attachments holding particle 5 (each plane 2 cm past it, more than the crumpling
+    /// moves it) and one leaving particle 7 free.
+    fn attachments(mesh: &ClothMesh) -> Vec<Attachment> {
+        let x = mesh.positions();
+        let at = |particle: usize, direction: Vec3, offset: f64| {
+            let direction = direction.normalize();
+            Attachment {
+                particle,
+                point: x[particle] + offset * direction,
+                direction,
+            }
+        };
+        vec![
+            at(5, Vec3::new(0.2, -0.1, 1.0), 0.02),
+            at(5, Vec3::new(1.0, 0.3, 0.0), 0.02),
+            at(7, Vec3::z(), -0.02),
+        ]
     }
 
     const SEAMS: [[usize; 2]; 3] = [[0, 1], [0, 19], [3, 12]];
@@ -770,6 +852,19 @@ mod tests {
             add_seam_pull(weighted(model.seam_pull(), k), pair.map(|i| x[i]), true, &mut l);
             add(&pair, &l.hessian_dense());
         }
+        // The attachments' blocks carry their own damping: scaled to the fabric's here, and
+        // K v has them unscaled.
+        let rescale = (1.0 + ATTACHMENT_DAMPING) / (1.0 + fab.damping);
+        let mut kv_attachments = vec![Vec3::zeros(); n];
+        for a in attachments(&mesh) {
+            if !holds(&a, &x[a.particle], &v[a.particle], 1.0) {
+                continue;
+            }
+            let mut l = Local::<1>::default();
+            add_attachment(&a, model.attachment_stiffness, &x[a.particle], true, &mut l);
+            add(&[a.particle], &(l.hessian_dense() * rescale));
+            kv_attachments[a.particle] += (1.0 - rescale) * l.hess[0][0] * v[a.particle];
+        }
         // The target holds (h^2 + h beta) K, here with h = 1.
         let assembled = matrix.to_dense() / (1.0 + fab.damping);
         let scale = dense.amax();
@@ -788,8 +883,8 @@ mod tests {
         // K v returned alongside matches the matrix.
         let mut kv = vec![Vec3::zeros(); n];
         matrix.mul(&v, &mut kv, false);
-        for (a, b) in kv.iter().zip(&hv) {
-            assert!((a / (1.0 + fab.damping) - b).norm() <= 1e-10 * scale);
+        for ((a, b), c) in kv.iter().zip(&hv).zip(&kv_attachments) {
+            assert!((a / (1.0 + fab.damping) + c - b).norm() <= 1e-10 * scale);
         }
     }
 
@@ -842,6 +937,8 @@ mod tests {
         let (_, mut model, _, x, v) = setup();
         let n = x.len();
         model.vertex_drag.iter_mut().for_each(|d| *d = 0.0); // drag is an external force
+        model.attachments.clear(); // as attachments are
+        model.attachment_colors.clear();
         let zero = Vec3::zeros();
         // Elastic forces at rest velocity: no net force, no net torque.
         let mut f = vec![zero; n];

@@ -5,6 +5,7 @@ use super::{
     Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
 };
 use crate::contact::{Collider, Contacts, PassThrough};
+use crate::energy::attachment::Attachment;
 use crate::error::{DivergenceReason, ParamError, SimError};
 use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
@@ -28,6 +29,7 @@ pub struct SimulationBuilder {
     seams: Vec<[usize; 2]>,
     seam_weights: Option<Vec<f64>>,
     touching: Vec<[usize; 2]>,
+    attachments: Vec<Attachment>,
     pass_through: Vec<PassThrough>,
     bending_calibration: Option<Vec<[f64; 2]>>,
 }
@@ -45,6 +47,7 @@ impl SimulationBuilder {
             seams: Vec::new(),
             seam_weights: None,
             touching: Vec::new(),
+            attachments: Vec::new(),
             pass_through: Vec::new(),
             bending_calibration: None,
         }
@@ -95,6 +98,12 @@ impl SimulationBuilder {
     /// godets was sewn); nothing pulls them.
     pub fn touching(mut self, pairs: Vec<[usize; 2]>) -> Self {
         self.touching = pairs;
+        self
+    }
+    /// Particles held on one side of a plane each (see [`Attachment`]), by a penalty ten
+    /// times as stiff as the stiffest fabric's membrane.
+    pub fn attachments(mut self, attachments: Vec<Attachment>) -> Self {
+        self.attachments = attachments;
         self
     }
     /// Cloth of several fabrics (a garment's panels): triangle `t` is of
@@ -213,6 +222,17 @@ impl SimulationBuilder {
                 expected: "particles of the mesh",
             });
         }
+        if let Some(a) = self.attachments.iter().find(|a| {
+            a.particle >= n
+                || !a.point.iter().all(|c| c.is_finite())
+                || (a.direction.norm() - 1.0).abs() > 1e-9
+        }) {
+            return Err(ParamError::OutOfRange {
+                name: "attachments",
+                value: a.particle as f64,
+                expected: "particles of the mesh, finite points and unit directions",
+            });
+        }
         let seam_weights = self.seam_weights.unwrap_or_else(|| vec![1.0; self.seams.len()]);
         ParamError::check(
             seam_weights.len() == self.seams.len(),
@@ -248,6 +268,7 @@ impl SimulationBuilder {
             &self.triangle_fabric,
             &self.seams,
             &seam_weights,
+            &self.attachments,
             self.bending_calibration,
             &pinned,
         );

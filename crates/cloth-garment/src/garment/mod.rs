@@ -65,6 +65,9 @@ pub struct Garment {
     /// Particle pairs of different panels touching at the start where no seam joins them
     /// (see [`Garment::find_touching`]).
     pub touching: Vec<[usize; 2]>,
+    /// The particles of each of the pattern's attached edges, with the way the edge is free
+    /// to move (see [`crate::pattern::AttachedEdge`]).
+    pub attached: Vec<(Vec<usize>, Vec3)>,
 }
 
 impl GarmentBuilder {
@@ -217,6 +220,11 @@ impl GarmentBuilder {
                 pairs,
             });
         }
+        let attached = pattern
+            .attachments
+            .iter()
+            .map(|a| (edge_vertices[a.edge.panel][a.edge.edge].clone(), a.direction))
+            .collect();
         let gathered = gathering::gathered_triangles(&mesh, &seams);
         Ok(Garment {
             mesh,
@@ -228,6 +236,7 @@ impl GarmentBuilder {
             gathered,
             passing: Vec::new(),
             touching: Vec::new(),
+            attached,
         })
     }
 }

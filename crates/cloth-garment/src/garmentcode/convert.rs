@@ -2,7 +2,8 @@
 
 use std::collections::HashMap;
 
-use crate::pattern::{Pattern, PatternError, Seam, SeamOrientation, SeamSide};
+use crate::pattern::{AttachedEdge, Pattern, PatternError, Seam, SeamOrientation, SeamSide};
+use cloth_core::Vec3;
 
 use super::panel::{panel, Frame};
 use super::schema::{CurvatureCoords, PanelRecord, Spec, Stitch};
@@ -66,9 +67,44 @@ pub(super) fn pattern(
             .map_err(|reason| PatternError::seam(file, s, reason))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let pattern = Pattern { name, panels, seams };
+    let attachments = records
+        .iter()
+        .enumerate()
+        .flat_map(|(panel, (_, record))| {
+            record.edges.iter().enumerate().filter_map(move |(edge, e)| {
+                let direction = attachment_direction(e.label.as_deref()?)?;
+                Some(AttachedEdge {
+                    edge: SeamSide { panel, edge },
+                    direction,
+                })
+            })
+        })
+        .collect();
+    let pattern = Pattern {
+        name,
+        panels,
+        seams,
+        attachments,
+    };
     pattern.validate(file)?;
     Ok(pattern)
+}
+
+/// The edge labels GarmentCode's simulator holds, and the way each is free to move, in
+/// our frame (GarmentCode's up, +y, is our +z; its +x is ours). Its simulator
+/// (pygarment/meshgen/garment.py `_add_attachment_labels`, with the one-sided constraint of
+/// its Warp fork) keeps a lower garment's waist (`lower_interface`) and a strapless top's
+/// upper edge (`strapless_top`) from sinking, and the right and left halves of a neckline
+/// (`right_collar` on -x, `left_collar` on +x) from sliding outwards. It puts the planes
+/// at levels taken from the body's measurements; we put each point's plane where the
+/// pattern places it, which is where GarmentCode's placement puts those levels.
+fn attachment_direction(label: &str) -> Option<Vec3> {
+    match label {
+        "lower_interface" | "strapless_top" => Some(Vec3::z()),
+        "right_collar" => Some(Vec3::x()),
+        "left_collar" => Some(-Vec3::x()),
+        _ => None,
+    }
 }
 
 /// The panels in `panel_order` when the file has one (it must name each panel once),

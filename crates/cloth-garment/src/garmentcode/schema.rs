@@ -72,6 +72,10 @@ pub(super) struct EdgeRecord {
     /// Kept as JSON: its two forms (a bare `[x, y]` and `{type, params}`) are told apart
     /// in `curvature.rs`, which can then name the panel and edge in its errors.
     pub curvature: Option<Value>,
+    /// What GarmentCode's simulator does with the edge: `lower_interface`,
+    /// `strapless_top`, `right_collar` and `left_collar` are held (see
+    /// `convert::attachment_direction`); others name it for segmentation only.
+    pub label: Option<String>,
 }
 
 /// The panels in file order.

@@ -16,6 +16,7 @@ pub use error::PatternError;
 pub use gather::{Gather, EASE, MAX_GATHER, SMALL_EXCESS};
 pub use placement::{Placement, Wrap};
 
+use cloth_core::Vec3;
 use nalgebra::Vector2;
 
 pub type Point2 = Vector2<f64>;
@@ -26,6 +27,8 @@ pub struct Pattern {
     pub name: String,
     pub panels: Vec<Panel>,
     pub seams: Vec<Seam>,
+    /// Edges held on one side of where they are placed (see [`AttachedEdge`]).
+    pub attachments: Vec<AttachedEdge>,
 }
 
 /// One flat piece of fabric.
@@ -95,6 +98,18 @@ pub struct Seam {
     pub a: SeamSide,
     pub b: SeamSide,
     pub orientation: SeamOrientation,
+}
+
+/// An edge held on one side of where it is placed: each of its points moves freely along
+/// `direction` but not back past its placed position (see [`cloth_core::Attachment`]).
+/// GarmentCode labels the edges its simulator holds so: a lower garment's waist may not
+/// sink below the waist (up), a bodice's neckline may not slide out over the shoulders
+/// (towards the middle), a strapless top may not sink below the arms (up).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AttachedEdge {
+    pub edge: SeamSide,
+    /// Unit vector in the world, pointing to the side the edge is free to move to.
+    pub direction: Vec3,
 }
 
 impl Pattern {

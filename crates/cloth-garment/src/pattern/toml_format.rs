@@ -22,11 +22,16 @@
 //! a = { panel = "front", edge = "right" }
 //! b = { panel = "back", edge = "left" }
 //! orientation = "opposite"            # or "same", or "auto"
+//!
+//! [[attachments]]                     # the waist may rise but not sink below where placed
+//! panel = "front"
+//! edge = "waist"
+//! direction = [0, 0, 1]               # the way it is free to move, in the world (z up)
 //! ```
 
 use super::{
-    BodyPart, Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam, SeamOrientation, SeamSide,
-    Wrap,
+    AttachedEdge, BodyPart, Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam,
+    SeamOrientation, SeamSide, Wrap,
 };
 use cloth_core::Vec3;
 use serde::Deserialize;
@@ -42,6 +47,8 @@ struct PatternRecord {
     panels: Vec<PanelRecord>,
     #[serde(default)]
     seams: Vec<SeamRecord>,
+    #[serde(default)]
+    attachments: Vec<AttachmentRecord>,
 }
 
 #[derive(Deserialize, Default, Clone, Copy)]
@@ -140,6 +147,16 @@ struct SideRecord {
     edge: EdgeRef,
 }
 
+/// An edge held on one side of where it is placed, free to move along `direction` (in
+/// the world, z up).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AttachmentRecord {
+    panel: String,
+    edge: EdgeRef,
+    direction: [f64; 3],
+}
+
 #[derive(Deserialize)]
 #[serde(untagged)]
 enum EdgeRef {
@@ -236,44 +253,11 @@ impl Pattern {
             name: record.name,
             panels,
             seams: Vec::with_capacity(record.seams.len()),
+            attachments: Vec::new(),
         };
         for (s, seam) in record.seams.iter().enumerate() {
-            let side = |r: &SideRecord| -> Result<SeamSide, PatternError> {
-                let Some(panel) = pattern.panel_index(&r.panel) else {
-                    let known: Vec<&str> = pattern.panels.iter().map(|p| p.name.as_str()).collect();
-                    return Err(PatternError::seam(
-                        file,
-                        s,
-                        format!("no panel named '{}' (panels: {})", r.panel, known.join(", ")),
-                    ));
-                };
-                let outline = &pattern.panels[panel].outline;
-                let edge = match &r.edge {
-                    EdgeRef::Index(i) if *i < outline.len() => Some(*i),
-                    EdgeRef::Index(_) => None,
-                    EdgeRef::Name(name) => pattern.panels[panel].edge_index(name),
-                };
-                let Some(edge) = edge else {
-                    let known: Vec<String> = outline
-                        .iter()
-                        .enumerate()
-                        .map(|(k, e)| e.name.clone().unwrap_or_else(|| k.to_string()))
-                        .collect();
-                    let wanted = match &r.edge {
-                        EdgeRef::Index(i) => i.to_string(),
-                        EdgeRef::Name(n) => format!("'{n}'"),
-                    };
-                    return Err(PatternError::seam(
-                        file,
-                        s,
-                        format!(
-                            "panel '{}' has no edge {wanted} (edges: {})",
-                            r.panel,
-                            known.join(", ")
-                        ),
-                    ));
-                };
-                Ok(SeamSide { panel, edge })
+            let side = |r: &SideRecord| {
+                find_edge(&pattern, &r.panel, &r.edge).map_err(|reason| PatternError::seam(file, s, reason))
             };
             let (a, b) = (side(&seam.a)?, side(&seam.b)?);
             let orientation = match seam.orientation {
@@ -283,7 +267,56 @@ impl Pattern {
             };
             pattern.seams.push(Seam { a, b, orientation });
         }
+        for (k, attached) in record.attachments.iter().enumerate() {
+            let edge = find_edge(&pattern, &attached.panel, &attached.edge).map_err(|reason| {
+                PatternError::Pattern {
+                    file: file.into(),
+                    reason: format!("attachment {k}: {reason}"),
+                }
+            })?;
+            let direction = Vec3::from(attached.direction)
+                .try_normalize(1e-12)
+                .filter(|d| d.iter().all(|c| c.is_finite()))
+                .ok_or_else(|| PatternError::Pattern {
+                    file: file.into(),
+                    reason: format!("attachment {k}: the direction is not a direction (zero or not finite)"),
+                })?;
+            pattern.attachments.push(AttachedEdge { edge, direction });
+        }
         pattern.validate(file)?;
         Ok(pattern)
     }
+}
+
+/// The outline edge a record names, or why there is none (listing what there is).
+fn find_edge(pattern: &Pattern, panel_name: &str, edge_ref: &EdgeRef) -> Result<SeamSide, String> {
+    let Some(panel) = pattern.panel_index(panel_name) else {
+        let known: Vec<&str> = pattern.panels.iter().map(|p| p.name.as_str()).collect();
+        return Err(format!(
+            "no panel named '{panel_name}' (panels: {})",
+            known.join(", ")
+        ));
+    };
+    let outline = &pattern.panels[panel].outline;
+    let edge = match edge_ref {
+        EdgeRef::Index(i) if *i < outline.len() => Some(*i),
+        EdgeRef::Index(_) => None,
+        EdgeRef::Name(name) => pattern.panels[panel].edge_index(name),
+    };
+    let Some(edge) = edge else {
+        let known: Vec<String> = outline
+            .iter()
+            .enumerate()
+            .map(|(k, e)| e.name.clone().unwrap_or_else(|| k.to_string()))
+            .collect();
+        let wanted = match edge_ref {
+            EdgeRef::Index(i) => i.to_string(),
+            EdgeRef::Name(n) => format!("'{n}'"),
+        };
+        return Err(format!(
+            "panel '{panel_name}' has no edge {wanted} (edges: {})",
+            known.join(", ")
+        ));
+    };
+    Ok(SeamSide { panel, edge })
 }

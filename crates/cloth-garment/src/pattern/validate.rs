@@ -142,6 +142,34 @@ impl Pattern {
                 }
             }
         }
+        for attached in &self.attachments {
+            let side = &attached.edge;
+            let Some(panel) = self
+                .panels
+                .get(side.panel)
+                .filter(|p| side.edge < p.outline.len())
+            else {
+                return Err(PatternError::Pattern {
+                    file: file.into(),
+                    reason: format!(
+                        "an attachment names panel {}, edge {}, which does not exist",
+                        side.panel, side.edge
+                    ),
+                });
+            };
+            let d = attached.direction;
+            if !(d.iter().all(|c| c.is_finite()) && (d.norm() - 1.0).abs() < 1e-9) {
+                return Err(PatternError::panel(
+                    file,
+                    &panel.name,
+                    Some(side.edge.to_string()),
+                    format!(
+                        "the edge's attachment direction ({}, {}, {}) is not a unit vector",
+                        d.x, d.y, d.z
+                    ),
+                ));
+            }
+        }
         if let Some(g) = self.gathers().into_iter().find(super::Gather::excessive) {
             return Err(PatternError::seam(
                 file,

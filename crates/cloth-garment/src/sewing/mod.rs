@@ -10,7 +10,8 @@ pub use weld_crossings::WeldCrossings;
 use crate::garment::{Garment, GarmentError, Welded};
 use crate::pattern::BodyPart;
 use cloth_core::{
-    Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError, Simulation,
+    Attachment, Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError,
+    Simulation,
 };
 use cloth_core::{SimulationBuilder, SolverSettings, StepStats, Vec3};
 use std::ops::ControlFlow;
@@ -73,6 +74,9 @@ pub struct Sewn {
     /// through one (see [`Garment::passing`]) until they are out of it, and those dressing
     /// the legs for the whole drape too (see [`sewing_passes`]).
     pub passing: Vec<PassThrough>,
+    /// The attached edges' particles, welded, each held where it was placed (see
+    /// [`Garment::attached`]).
+    pub attachments: Vec<Attachment>,
 }
 
 /// Sews `garment`, each panel of its fabric in `panel_fabrics`, around the bodies of
@@ -144,12 +148,14 @@ pub fn sew(
         ..SolverSettings::default()
     };
     let bodies = collider.clone();
+    let attachments = attachments_as_placed(garment);
     let mut sim = SimulationBuilder::new(garment.mesh.clone(), fabrics[0].clone())
         .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
         .seams(garment.seam_pairs())
         .seam_weights(seam_weights)
         .touching(garment.touching.clone())
+        .attachments(attachments.clone())
         .pass_through(sewing_passes(garment))
         .collider(collider)
         .build()?;
@@ -263,6 +269,13 @@ pub fn sew(
         out.dedup();
         out
     };
+    let attachments = attachments
+        .iter()
+        .map(|a| Attachment {
+            particle: welded.particle_of[a.particle],
+            ..*a
+        })
+        .collect();
     let passing = sim
         .passing()
         .iter()
@@ -274,6 +287,7 @@ pub fn sew(
     Ok(Sewn {
         welded,
         passing,
+        attachments,
         fabrics,
         triangle_fabric,
         report: SewingReport {
@@ -322,6 +336,37 @@ fn sewing_passes(garment: &Garment) -> Vec<PassThrough> {
     pieces
 }
 
+/// How far back past where it was placed an attached edge may go, m: GarmentCode places
+/// a garment's components this far apart (`place_by_interface`, `gap=5`), and closing
+/// such a gap moves either side. Held at the placed level itself, trousers' waistband
+/// (rand_1_002) held their legs up into the crotch, caught there between the seams'
+/// sides (24 crossings when welded; none with the slack).
+const ATTACHMENT_SLACK: f64 = 0.05;
+
+/// Each attached edge held on the side of the plane [`ATTACHMENT_SLACK`] behind its placed
+/// point farthest back along its direction: the edge as a whole may not move far back
+/// past where it was placed. GarmentCode places skirt tiers and flounces far out, hanging
+/// below the waist, and a pull that meets in the middle drew a tiered skirt's waist
+/// (rand_1_072) 60 cm down to its tiers and off the hips. Each point held where it was
+/// placed instead fought the seams: a peplum's waist, placed curving 5 cm above the hem of
+/// the crop top it is sewn to (rand_1_057), pushed the top up into the armpits.
+fn attachments_as_placed(garment: &Garment) -> Vec<Attachment> {
+    let placed = garment.mesh.positions();
+    let mut attachments = Vec::new();
+    for (particles, direction) in &garment.attached {
+        let level = particles
+            .iter()
+            .map(|&i| placed[i].dot(direction))
+            .fold(f64::INFINITY, f64::min);
+        attachments.extend(particles.iter().map(|&particle| Attachment {
+            particle,
+            point: (level - ATTACHMENT_SLACK) * direction,
+            direction: *direction,
+        }));
+    }
+    attachments
+}
+
 /// The draped garment and how its run ended.
 #[derive(Debug)]
 pub struct Draped {
@@ -351,6 +396,7 @@ pub fn drape_simulation(
             .settings(solver)
             .bending_calibration(sewn.bending_calibration.clone())
             .pass_through(sewn.passing.clone())
+            .attachments(sewn.attachments.clone())
             .collider(collider)
             .build()?,
     )
