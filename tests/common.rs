@@ -30,3 +30,20 @@ pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
         .expect("a thread pool")
         .install(f)
 }
+
+/// GarmentCode's design `design` (a pattern in assets/garmentcode/patterns) on its mean
+/// body, y up, at `edge_length`, in cotton poplin: the scene and its preparation.
+pub fn garmentcode_scene(
+    design: &str,
+    edge_length: f64,
+) -> (cloth::scene_file::SceneFile, cloth::scene_file::Prepared) {
+    let assets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
+    let text = format!(
+        "name = \"{design}\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\nup_axis = \"y\"\n\
+         [cloth.garment]\nedge_length = {edge_length}\npattern = \"patterns/{design}.json\"\n\
+         [fabric]\npreset = \"cotton_poplin\"\n"
+    );
+    let scene = cloth::scene_file::SceneFile::from_toml_str(&text, "scene.toml").unwrap();
+    let prepared = scene.prepare("scene.toml", &assets).unwrap();
+    (scene, prepared)
+}

@@ -3,22 +3,18 @@
 //! tiers' mass. (Its own file: the designs draped in `garmentcode_drapes` run alongside
 //! each other, not alongside this.)
 
+mod common;
+
 use cloth::garment::sewing::sew;
-use cloth::scene_file::{PreparedCloth, SceneFile};
+use cloth::scene_file::PreparedCloth;
 use cloth::{Interrupt, Vec3};
 use std::ops::ControlFlow;
-use std::path::Path;
 
 /// Sews GarmentCode's rand_1_072 at 3 cm for 40 steps, its waist's attachments given to
 /// the sewing or not; returns how far the waist's lowest particle went below the lowest
 /// placed one, m, at most, and the number of waist particles.
 fn tiered_waist_sinks(attached: bool) -> (f64, usize) {
-    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
-    let text = "name = \"rand_1_072\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\nup_axis = \"y\"\n\
-                [cloth.garment]\nedge_length = 0.03\npattern = \"patterns/rand_1_072.json\"\n\
-                [fabric]\npreset = \"cotton_poplin\"\n";
-    let scene = SceneFile::from_toml_str(text, "scene.toml").unwrap();
-    let prepared = scene.prepare("scene.toml", &assets).unwrap();
+    let (scene, prepared) = common::garmentcode_scene("rand_1_072", 0.03);
     let PreparedCloth::Garment { mut garment, fabrics } = prepared.cloth else {
         panic!("a garment")
     };

@@ -4,11 +4,12 @@
 //! each ends at rest, passes through neither itself nor the body, barely stretches, and
 //! hangs on the body where it belongs, centred, not off one side.
 
+mod common;
+
 use cloth::garment::sewing::sew;
-use cloth::scene_file::{PreparedCloth, RunObserver, RunOutcome, SceneFile};
+use cloth::scene_file::{PreparedCloth, RunObserver, RunOutcome};
 use cloth::{Interrupt, Simulation, StepStats, Vec3};
 use std::ops::ControlFlow;
-use std::path::Path;
 
 struct Quiet;
 
@@ -27,15 +28,7 @@ struct Fit {
 
 /// Sews and drapes `fit.design` at 3 cm, checks it and returns the warnings.
 fn drape(fit: &Fit) -> Vec<String> {
-    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
-    let text = format!(
-        "name = \"{0}\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\nup_axis = \"y\"\n\
-         [cloth.garment]\nedge_length = 0.03\npattern = \"patterns/{0}.json\"\n\
-         [fabric]\npreset = \"cotton_poplin\"\n",
-        fit.design
-    );
-    let scene = SceneFile::from_toml_str(&text, "scene.toml").unwrap();
-    let prepared = scene.prepare("scene.toml", &assets).unwrap();
+    let (scene, prepared) = common::garmentcode_scene(fit.design, 0.03);
     let warnings: Vec<String> = prepared.warnings.iter().map(ToString::to_string).collect();
     let result = prepared.run(&scene, None, &mut Quiet).unwrap();
     let r = &result.report;
@@ -128,12 +121,7 @@ fn sew_godets(
     Vec<String>,
     Result<cloth::garment::sewing::Sewn, cloth::garment::GarmentError>,
 ) {
-    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
-    let text = "name = \"rand_1_079\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\nup_axis = \"y\"\n\
-                [cloth.garment]\nedge_length = 0.03\npattern = \"patterns/rand_1_079.json\"\n\
-                [fabric]\npreset = \"cotton_poplin\"\n";
-    let scene = SceneFile::from_toml_str(text, "scene.toml").unwrap();
-    let prepared = scene.prepare("scene.toml", &assets).unwrap();
+    let (scene, prepared) = common::garmentcode_scene("rand_1_079", 0.03);
     let warnings = prepared.warnings.iter().map(ToString::to_string).collect();
     let PreparedCloth::Garment { mut garment, fabrics } = prepared.cloth else {
         panic!("a garment")
