@@ -116,8 +116,8 @@ pub(crate) struct ForceModel {
     attachments: Vec<AttachmentElement>,
     attachment_colors: Vec<Range<usize>>,
     attachment_energy: Vec<f64>,
-    /// Stiffness of the attachments' penalty, N/m.
-    attachment_stiffness: f64,
+    /// Stiffness of the penalties holding the cloth (attachments, sharp features), N/m.
+    penalty_stiffness: f64,
     masses: Vec<f64>,
     /// Each particle's share of `drag * area`, kg/s.
     vertex_drag: Vec<f64>,
@@ -235,9 +235,9 @@ impl ForceModel {
                 vertex_drag[i as usize] += f.drag * e.rest.area / 3.0;
             }
         }
-        // As stiff as ten cells of the stiffest fabric: a waist holding up a skirt gives a
-        // small fraction of a cell.
-        let attachment_stiffness = 10.0 * fabrics.iter().map(Fabric::membrane_stiffness).fold(0.0, f64::max);
+        // As stiff as ten cells of the stiffest fabric: a waist holding up a skirt, or cloth
+        // pressed on a body's edge, gives a small fraction of a cell.
+        let penalty_stiffness = 10.0 * fabrics.iter().map(Fabric::membrane_stiffness).fold(0.0, f64::max);
         let model = Self {
             tri_energy: vec![0.0; tris.len()],
             hinge_energy: vec![0.0; hinges.len()],
@@ -254,7 +254,7 @@ impl ForceModel {
             attachment_energy: vec![0.0; attachments.len()],
             attachments,
             attachment_colors,
-            attachment_stiffness,
+            penalty_stiffness,
             masses,
             vertex_drag,
             bending_calibration: kappa,
@@ -284,6 +284,11 @@ impl ForceModel {
     }
     pub fn seam_pull(&self) -> SeamPull {
         self.seam_pull
+    }
+    /// Stiffness of the penalties holding the cloth (attachments, a body's sharp
+    /// features), N/m: ten times the stiffest fabric's membrane.
+    pub fn penalty_stiffness(&self) -> f64 {
+        self.penalty_stiffness
     }
     pub fn masses(&self) -> &[f64] {
         &self.masses
@@ -428,7 +433,7 @@ impl ForceModel {
             self.seam_energy.iter_mut().for_each(|e| *e = 0.0);
         }
 
-        let k = self.attachment_stiffness;
+        let k = self.penalty_stiffness;
         let attachment_kernel = |e: &AttachmentElement, energy: &mut f64| {
             let i = e.v[0] as usize;
             *energy = 0.0;
@@ -861,7 +866,7 @@ mod tests {
                 continue;
             }
             let mut l = Local::<1>::default();
-            add_attachment(&a, model.attachment_stiffness, &x[a.particle], true, &mut l);
+            add_attachment(&a, model.penalty_stiffness, &x[a.particle], true, &mut l);
             add(&[a.particle], &(l.hessian_dense() * rescale));
             kv_attachments[a.particle] += (1.0 - rescale) * l.hess[0][0] * v[a.particle];
         }

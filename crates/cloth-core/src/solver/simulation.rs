@@ -274,7 +274,7 @@ impl SimulationBuilder {
         );
         let contacts = self.collider.map(|collider| {
             let fabrics = model.fabrics();
-            let stiffness = 10.0 * fabrics.iter().map(Fabric::membrane_stiffness).fold(0.0, f64::max);
+            let stiffness = model.penalty_stiffness();
             let friction = model
                 .particle_fabrics()
                 .iter()

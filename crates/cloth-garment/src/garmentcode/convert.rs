@@ -96,8 +96,8 @@ pub(super) fn pattern(
 /// its Warp fork) keeps a lower garment's waist (`lower_interface`) and a strapless top's
 /// upper edge (`strapless_top`) from sinking, and the right and left halves of a neckline
 /// (`right_collar` on -x, `left_collar` on +x) from sliding outwards. It puts the planes
-/// at levels taken from the body's measurements; we put each point's plane where the
-/// pattern places it, which is where GarmentCode's placement puts those levels.
+/// at levels taken from the body's measurements; the sewing puts them by where the
+/// pattern places each edge (see `sewing::attachments_as_placed`).
 fn attachment_direction(label: &str) -> Option<Vec3> {
     match label {
         "lower_interface" | "strapless_top" => Some(Vec3::z()),

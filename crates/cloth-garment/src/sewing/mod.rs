@@ -74,8 +74,8 @@ pub struct Sewn {
     /// through one (see [`Garment::passing`]) until they are out of it, and those dressing
     /// the legs for the whole drape too (see [`sewing_passes`]).
     pub passing: Vec<PassThrough>,
-    /// The attached edges' particles, welded, each held where it was placed (see
-    /// [`Garment::attached`]).
+    /// The attached edges' particles, welded, each held on the side of its edge's plane
+    /// (see `attachments_as_placed`).
     pub attachments: Vec<Attachment>,
 }
 
