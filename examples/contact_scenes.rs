@@ -70,6 +70,7 @@ fn main() {
     let max_steps = (seconds / h).round() as u64;
     // A moving body never lets the cloth rest: run those for the time limit.
     let criteria = RestCriteria {
+        max_time_step: None,
         tolerance: 1e-5,
         consecutive_steps: 10,
         max_steps,

@@ -50,6 +50,7 @@ fn main() {
     println!("|---|---|---|---|---|---|---|");
     let checkpoints = [100u64, 200, 500, 1000, 2000];
     let criteria = RestCriteria {
+        max_time_step: None,
         tolerance: 1e-5,
         consecutive_steps: 10,
         max_steps: 2000,

@@ -11,6 +11,7 @@ use std::sync::Arc;
 /// is deeper inside a body than a tenth of the contact thickness.
 fn run_checked(scene: &mut Scene, max_steps: u64, thickness: f64) -> StopReason {
     let criteria = RestCriteria {
+        max_time_step: None,
         tolerance: 1e-5,
         consecutive_steps: 10,
         max_steps,
@@ -289,6 +290,7 @@ fn friction_holds_a_sheet_on_a_slope_only_when_mu_exceeds_tan_a() {
         let steps = (seconds / setup.time_step).round() as u64;
         let start: Vec3 = scene.simulation.positions().iter().sum::<Vec3>();
         let criteria = RestCriteria {
+            max_time_step: None,
             tolerance: 0.0f64.max(1e-12),
             consecutive_steps: u32::MAX,
             max_steps: steps,

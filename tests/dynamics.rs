@@ -31,6 +31,7 @@ fn settings(integrator: Integrator, h: f64) -> SolverSettings {
 fn rest(h: f64, max_seconds: f64) -> RestCriteria {
     // At rest: no particle faster than 1 mm/s for 20 steps.
     RestCriteria {
+        max_time_step: None,
         tolerance: 1e-3 * h,
         consecutive_steps: 20,
         max_steps: (max_seconds / h) as u64,
@@ -175,6 +176,7 @@ fn a_run_says_why_it_stopped() {
         .unwrap();
     let out = sim
         .run_to_rest(&RestCriteria {
+            max_time_step: None,
             tolerance: 1e-9,
             consecutive_steps: 5,
             max_steps: 7,
@@ -190,6 +192,7 @@ fn a_run_says_why_it_stopped() {
     let mut seen = Vec::new();
     sim.run_to_rest_with(
         &RestCriteria {
+            max_time_step: None,
             tolerance: 1e-9,
             consecutive_steps: 5,
             max_steps: 3,
@@ -206,6 +209,7 @@ fn a_run_says_why_it_stopped() {
     let out = sim
         .run_to_rest_with(
             &RestCriteria {
+                max_time_step: None,
                 tolerance: 1e-9,
                 consecutive_steps: 5,
                 max_steps: 100,

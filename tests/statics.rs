@@ -39,6 +39,7 @@ fn hanging_strip_top_strain_is_rho_g_l_over_k() {
 fn settle(sim: &mut Simulation) -> RestOutcome {
     let out = sim
         .run_to_rest(&RestCriteria {
+            max_time_step: None,
             tolerance: 1e-9,
             consecutive_steps: 20,
             max_steps: 5000,

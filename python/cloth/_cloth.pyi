@@ -433,13 +433,17 @@ class Simulation:
         moving_fraction: float = 0.0,
         callback: _Callback | None = None,
         every: int = 1,
+        max_time_step: float | None = None,
     ) -> RestOutcome:
         """Steps until every particle (all but ``moving_fraction`` of them) moves less
         than ``tolerance`` m per step for ``consecutive_steps`` steps, or ``max_steps``.
         ``callback`` sees a
         :class:`Snapshot` every ``every`` steps; returning ``False`` stops the run
         (reason ``"stopped"``); an exception it raises stops the run and propagates.
-        Ctrl-C stops it too (``KeyboardInterrupt``, the state kept)."""
+        Ctrl-C stops it too (``KeyboardInterrupt``, the state kept). With
+        ``max_time_step`` (s), each step taken whole lets the next grow by a quarter up
+        to it (one that had to be cut starts again from the solver's), ``tolerance``
+        growing with the step; the solver's own step is given back at the end."""
     @property
     def positions(self) -> npt.NDArray[np.float64]:
         """``(N, 3)`` positions. Setting them moves the particles (pinned ones go back to

@@ -580,6 +580,25 @@ def test_rest_is_reached_and_reported(cotton_si):
     assert out.steps == sim.step_count
 
 
+def test_a_run_to_rest_may_grow_its_step(cotton_si):
+    # Let go flat from one edge, the sheet swings down; longer steps damp the swing.
+    def hanging():
+        mesh = sheet(nx=10, ny=10)
+        pins = [mesh.grid_index(i, 0) for i in range(10)]
+        return cloth.Simulation(mesh, cloth.Fabric.from_si(cotton_si), pins=pins)
+
+    fixed, grown = hanging(), hanging()
+    h = fixed.settings["time_step"]
+    a = fixed.run_to_rest(tolerance=1e-4 * h, max_steps=3000)
+    b = grown.run_to_rest(tolerance=1e-4 * h, max_steps=3000, max_time_step=3 * h)
+    assert a.reason == b.reason == "at_rest"
+    assert b.steps < a.steps
+    assert np.abs(fixed.positions - grown.positions).max() < 1e-3
+    assert grown.settings["time_step"] == h
+    with pytest.raises(ValueError, match="max_time_step"):
+        grown.run_to_rest(max_time_step=-1.0)
+
+
 def test_pins_hold_exactly(cotton_si):
     mesh = sheet(nx=6, ny=6)
     pins = [mesh.grid_index(0, 0), mesh.grid_index(5, 0)]

@@ -77,6 +77,7 @@ impl Cantilever {
         let (builder, grid) = self.simulation_builder()?;
         let mut sim = builder.build()?;
         let criteria = RestCriteria {
+            max_time_step: None,
             tolerance: 1e-9,
             consecutive_steps: 20,
             max_steps: 5000,

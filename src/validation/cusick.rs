@@ -52,6 +52,7 @@ impl CusickTest {
             damping: 0.01,
             time_step: 1.0 / 60.0,
             rest: RestCriteria {
+                max_time_step: None,
                 tolerance: 1e-6,
                 consecutive_steps: 20,
                 max_steps: 4000,

@@ -39,6 +39,7 @@ impl HangingStrip {
             .pins((0..columns).map(|i| Pin::fixed(g.index(i, 0))))
             .build()?;
         let criteria = RestCriteria {
+            max_time_step: None,
             tolerance: 1e-8,
             consecutive_steps: 20,
             max_steps: 20_000,

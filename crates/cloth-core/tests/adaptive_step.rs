@@ -2,8 +2,10 @@
 //! for numerical reasons above the floor of `time_step / 2^max_halvings`.
 
 use cloth_core::{
-    DivergenceReason, Fabric, GridBuilder, Pin, SimError, Simulation, SimulationBuilder, SolverSettings, Vec3,
+    DivergenceReason, Fabric, GridBuilder, Pin, RestCriteria, SimError, Simulation, SimulationBuilder,
+    SolverSettings, StopReason, Vec3,
 };
+use std::ops::ControlFlow;
 
 /// A 20 x 20 sheet hanging from two corners, its implicit solves cut at `iterations`.
 fn hanging_sheet(iterations: usize, max_halvings: u32) -> Simulation {
@@ -142,4 +144,79 @@ fn a_step_whose_impacts_go_over_budget_is_taken_in_substeps() {
     // Neither lets the sheets pass through each other.
     assert_eq!(whole.self_intersections().count, 0);
     assert_eq!(cut.self_intersections().count, 0);
+}
+
+/// A 20 x 20 sheet held flat along one edge, let go to swing down and run to rest at
+/// 1/30 s (its solves cut at `iterations`), its step growing to `most` if given; the steps
+/// taken and, per step, its length and whether it was cut (taken in substeps).
+fn settle(iterations: usize, max_halvings: u32, most: Option<f64>) -> (Simulation, u64, Vec<(f64, bool)>) {
+    let mesh = GridBuilder::new(20, 20)
+        .size(0.5, 0.5)
+        .axes(Vec3::x(), Vec3::y())
+        .build()
+        .unwrap();
+    let mut settings = SolverSettings {
+        time_step: 1.0 / 30.0,
+        max_halvings,
+        parallel: false,
+        ..SolverSettings::default()
+    };
+    settings.pcg.max_iterations = iterations;
+    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
+        .settings(settings)
+        .pins((0..20).map(Pin::fixed))
+        .build()
+        .unwrap();
+    let criteria = RestCriteria {
+        max_time_step: most,
+        tolerance: 1e-4 / 30.0,
+        consecutive_steps: 10,
+        max_steps: 3000,
+        moving_fraction: 0.0,
+    };
+    let mut steps = Vec::new();
+    let outcome = sim
+        .run_to_rest_with(&criteria, |sim, stats| {
+            let h = sim.settings().time_step;
+            steps.push((h, stats.smallest_substep < h || !stats.cg_converged));
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+    assert_eq!(outcome.reason, StopReason::AtRest, "{outcome:?}");
+    (sim, outcome.steps, steps)
+}
+
+#[test]
+fn a_run_to_rest_may_grow_its_step_and_rests_where_a_fixed_one_does() {
+    let (fixed, fixed_steps, _) = settle(1000, 6, None);
+    let (grown, grown_steps, lengths) = settle(1000, 6, Some(0.1));
+    // The forces balance where they did; implicit Euler's longer steps got there sooner.
+    let apart = fixed
+        .positions()
+        .iter()
+        .zip(grown.positions())
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0, f64::max);
+    assert!(apart < 1e-3, "{apart} m apart");
+    assert!(2 * grown_steps < fixed_steps, "{grown_steps} steps grown, {fixed_steps} fixed");
+    assert!(lengths.iter().any(|&(h, _)| (h - 0.1).abs() < 1e-12), "never grew to 0.1 s");
+    assert!(lengths.iter().all(|&(h, _)| h <= 0.1 + 1e-12));
+    // The solver's own step is given back.
+    assert_eq!(grown.settings().time_step, 1.0 / 30.0);
+}
+
+#[test]
+fn a_step_that_had_to_be_cut_starts_the_growth_again() {
+    // Solves cut at a few iterations fail at the longer steps, and those steps are cut.
+    let (_, _, steps) = settle(25, 6, Some(0.1));
+    let base = 1.0 / 30.0;
+    assert!((steps[0].0 - base).abs() < 1e-15);
+    let mut cut = 0;
+    for pair in steps.windows(2) {
+        let ((h, was_cut), (next, _)) = (pair[0], pair[1]);
+        let expected = if was_cut { base } else { (1.25 * h).min(0.1) };
+        assert!((next - expected).abs() < 1e-12, "after {h} (cut: {was_cut}): {next}");
+        cut += usize::from(was_cut);
+    }
+    assert!(cut > 0, "no step was cut");
 }

@@ -35,6 +35,7 @@ fn a_strip_of_two_fabrics_stretches_as_each_of_its_cells() {
     assert_eq!(sim.fabrics().len(), 2);
     let outcome = sim
         .run_to_rest(&RestCriteria {
+            max_time_step: None,
             tolerance: 1e-9,
             consecutive_steps: 10,
             max_steps: 20_000,

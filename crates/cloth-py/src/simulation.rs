@@ -383,8 +383,10 @@ impl Simulation {
     /// `tolerance` m per step for `consecutive_steps` steps, or `max_steps`. `callback`
     /// sees a Snapshot every `every` steps; returning False stops the run (reason
     /// "stopped"); an exception it raises stops the run and propagates. Ctrl-C stops it
-    /// too (KeyboardInterrupt, the state kept).
-    #[pyo3(signature = (*, tolerance = 1e-5, consecutive_steps = 10, max_steps = 10000, moving_fraction = 0.0, callback = None, every = 1))]
+    /// too (KeyboardInterrupt, the state kept). With `max_time_step`, each step taken
+    /// whole lets the next grow by a quarter up to it (a cut one starts again from the
+    /// solver's), and `tolerance` grows with the step.
+    #[pyo3(signature = (*, tolerance = 1e-5, consecutive_steps = 10, max_steps = 10000, moving_fraction = 0.0, callback = None, every = 1, max_time_step = None))]
     #[allow(clippy::too_many_arguments)]
     fn run_to_rest(
         &mut self,
@@ -395,8 +397,10 @@ impl Simulation {
         moving_fraction: f64,
         callback: Option<Py<PyAny>>,
         every: u64,
+        max_time_step: Option<f64>,
     ) -> PyResult<RestOutcome> {
         let criteria = RestCriteria {
+            max_time_step,
             tolerance,
             consecutive_steps,
             max_steps,

@@ -98,6 +98,9 @@ pub struct DrapeSettings {
     /// backward Euler follows at steps of a thirtieth of a second as well as at a
     /// sixtieth (the rest state differs by a fraction of a millimetre), in half the steps.
     pub time_step: f64,
+    /// The step grows, while the steps go well, up to this, s (see
+    /// [`RestCriteria::max_time_step`]; at most the time step: it does not grow).
+    pub max_time_step: f64,
     /// At rest when every particle is slower than this, m/s ...
     pub rest_speed: f64,
     /// ... for this many steps in a row ...
@@ -121,6 +124,7 @@ impl Default for DrapeSettings {
     fn default() -> Self {
         Self {
             time_step: 1.0 / 30.0,
+            max_time_step: 0.1,
             rest_speed: 6e-3,
             consecutive_steps: 10,
             moving_fraction: 0.01,
@@ -137,6 +141,12 @@ impl DrapeSettings {
             self.time_step.is_finite() && self.time_step > 0.0,
             "drape.time_step",
             self.time_step,
+            "a positive time step in s",
+        )?;
+        ParamError::check(
+            self.max_time_step.is_finite() && self.max_time_step > 0.0,
+            "drape.max_time_step",
+            self.max_time_step,
             "a positive time step in s",
         )?;
         ParamError::check(
@@ -171,6 +181,7 @@ impl DrapeSettings {
     /// The source's stopping mechanism in displacement per step.
     pub fn rest(&self) -> RestCriteria {
         RestCriteria {
+            max_time_step: (self.max_time_step > self.time_step).then_some(self.max_time_step),
             tolerance: self.rest_speed * self.time_step,
             consecutive_steps: self.consecutive_steps,
             max_steps: self.max_steps,
