@@ -7,11 +7,12 @@ use cloth_core::{
 };
 use std::ops::ControlFlow;
 
-/// A 20 x 20 sheet hanging from two corners, its implicit solves cut at `iterations`.
-fn hanging_sheet(iterations: usize, max_halvings: u32) -> Simulation {
+/// A 20 x 20 sheet, 0.5 m wide, along `across` and `down` from its first row, held at
+/// `pins`, its implicit solves cut at `iterations`.
+fn sheet(across: Vec3, down: Vec3, pins: Vec<Pin>, iterations: usize, max_halvings: u32) -> Simulation {
     let mesh = GridBuilder::new(20, 20)
         .size(0.5, 0.5)
-        .axes(Vec3::x(), -Vec3::z())
+        .axes(across, down)
         .build()
         .unwrap();
     let mut settings = SolverSettings {
@@ -23,9 +24,20 @@ fn hanging_sheet(iterations: usize, max_halvings: u32) -> Simulation {
     settings.pcg.max_iterations = iterations;
     SimulationBuilder::new(mesh, Fabric::cotton_like())
         .settings(settings)
-        .pins([Pin::fixed(0), Pin::fixed(19)])
+        .pins(pins)
         .build()
         .unwrap()
+}
+
+/// The sheet hanging from two corners.
+fn hanging_sheet(iterations: usize, max_halvings: u32) -> Simulation {
+    sheet(
+        Vec3::x(),
+        -Vec3::z(),
+        vec![Pin::fixed(0), Pin::fixed(19)],
+        iterations,
+        max_halvings,
+    )
 }
 
 #[test]
@@ -150,23 +162,13 @@ fn a_step_whose_impacts_go_over_budget_is_taken_in_substeps() {
 /// 1/30 s (its solves cut at `iterations`), its step growing to `most` if given; the steps
 /// taken and, per step, its length and whether it was cut (taken in substeps).
 fn settle(iterations: usize, max_halvings: u32, most: Option<f64>) -> (Simulation, u64, Vec<(f64, bool)>) {
-    let mesh = GridBuilder::new(20, 20)
-        .size(0.5, 0.5)
-        .axes(Vec3::x(), Vec3::y())
-        .build()
-        .unwrap();
-    let mut settings = SolverSettings {
-        time_step: 1.0 / 30.0,
+    let mut sim = sheet(
+        Vec3::x(),
+        Vec3::y(),
+        (0..20).map(Pin::fixed).collect(),
+        iterations,
         max_halvings,
-        parallel: false,
-        ..SolverSettings::default()
-    };
-    settings.pcg.max_iterations = iterations;
-    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
-        .settings(settings)
-        .pins((0..20).map(Pin::fixed))
-        .build()
-        .unwrap();
+    );
     let criteria = RestCriteria {
         max_time_step: most,
         tolerance: 1e-4 / 30.0,
@@ -198,8 +200,14 @@ fn a_run_to_rest_may_grow_its_step_and_rests_where_a_fixed_one_does() {
         .map(|(a, b)| (a - b).norm())
         .fold(0.0, f64::max);
     assert!(apart < 1e-3, "{apart} m apart");
-    assert!(2 * grown_steps < fixed_steps, "{grown_steps} steps grown, {fixed_steps} fixed");
-    assert!(lengths.iter().any(|&(h, _)| (h - 0.1).abs() < 1e-12), "never grew to 0.1 s");
+    assert!(
+        2 * grown_steps < fixed_steps,
+        "{grown_steps} steps grown, {fixed_steps} fixed"
+    );
+    assert!(
+        lengths.iter().any(|&(h, _)| (h - 0.1).abs() < 1e-12),
+        "never grew to 0.1 s"
+    );
     assert!(lengths.iter().all(|&(h, _)| h <= 0.1 + 1e-12));
     // The solver's own step is given back.
     assert_eq!(grown.settings().time_step, 1.0 / 30.0);
@@ -215,7 +223,10 @@ fn a_step_that_had_to_be_cut_starts_the_growth_again() {
     for pair in steps.windows(2) {
         let ((h, was_cut), (next, _)) = (pair[0], pair[1]);
         let expected = if was_cut { base } else { (1.25 * h).min(0.1) };
-        assert!((next - expected).abs() < 1e-12, "after {h} (cut: {was_cut}): {next}");
+        assert!(
+            (next - expected).abs() < 1e-12,
+            "after {h} (cut: {was_cut}): {next}"
+        );
         cut += usize::from(was_cut);
     }
     assert!(cut > 0, "no step was cut");

@@ -742,61 +742,71 @@ impl Simulation {
         mut observe: impl FnMut(&Simulation, &StepStats) -> ControlFlow<()>,
     ) -> Result<RestOutcome, SimError> {
         criteria.validate()?;
+        // The step may grow on the way (see `RestCriteria::max_time_step`): the solver's
+        // own is given back however the run ends.
         let base = self.settings.time_step;
-        let accuracy = 0.01 * criteria.tolerance / base;
-        let allowed = (criteria.moving_fraction * self.x.len() as f64).floor() as usize;
-        let mut calm = 0u32;
-        let mut last = StepStats::default();
-        let outcome = (|| {
-            for k in 1..=criteria.max_steps {
-                last = match self.step_to(accuracy) {
-                    Ok(stats) => stats,
-                    // Stopped inside the step: the state is the last good step's.
-                    Err(SimError::Interrupted { .. }) => {
-                        return Ok(RestOutcome {
-                            reason: StopReason::Stopped,
-                            steps: k - 1,
-                            last,
-                        })
-                    }
-                    Err(e) => return Err(e),
-                };
-                if observe(self, &last).is_break() {
-                    return Ok(RestOutcome {
-                        reason: StopReason::Stopped,
-                        steps: k,
-                        last,
-                    });
-                }
-                let h = self.settings.time_step;
-                calm = if self.moving_particles(criteria.tolerance * h / base) <= allowed {
-                    calm + 1
-                } else {
-                    0
-                };
-                if calm >= criteria.consecutive_steps {
-                    return Ok(RestOutcome {
-                        reason: StopReason::AtRest,
-                        steps: k,
-                        last,
-                    });
-                }
-                if let Some(most) = criteria.max_time_step {
-                    self.settings.time_step = next_time_step(h, base, most, &last);
-                }
-            }
-            Ok(RestOutcome {
-                reason: StopReason::StepLimit,
-                steps: criteria.max_steps,
-                last,
-            })
-        })();
+        let outcome = self.steps_to_rest(criteria, &mut observe);
         self.settings.time_step = base;
         outcome
     }
 }
 
 impl Simulation {
+    /// The loop of [`Simulation::run_to_rest_with`], from steps of the solver's length.
+    fn steps_to_rest(
+        &mut self,
+        criteria: &RestCriteria,
+        observe: &mut impl FnMut(&Simulation, &StepStats) -> ControlFlow<()>,
+    ) -> Result<RestOutcome, SimError> {
+        let base = self.settings.time_step;
+        let accuracy = 0.01 * criteria.tolerance / base;
+        let allowed = (criteria.moving_fraction * self.x.len() as f64).floor() as usize;
+        let mut calm = 0u32;
+        let mut last = StepStats::default();
+        for k in 1..=criteria.max_steps {
+            last = match self.step_to(accuracy) {
+                Ok(stats) => stats,
+                // Stopped inside the step: the state is the last good step's.
+                Err(SimError::Interrupted { .. }) => {
+                    return Ok(RestOutcome {
+                        reason: StopReason::Stopped,
+                        steps: k - 1,
+                        last,
+                    })
+                }
+                Err(e) => return Err(e),
+            };
+            if observe(self, &last).is_break() {
+                return Ok(RestOutcome {
+                    reason: StopReason::Stopped,
+                    steps: k,
+                    last,
+                });
+            }
+            let h = self.settings.time_step;
+            calm = if self.moving_particles(criteria.tolerance * h / base) <= allowed {
+                calm + 1
+            } else {
+                0
+            };
+            if calm >= criteria.consecutive_steps {
+                return Ok(RestOutcome {
+                    reason: StopReason::AtRest,
+                    steps: k,
+                    last,
+                });
+            }
+            if let Some(most) = criteria.max_time_step {
+                self.settings.time_step = next_time_step(h, base, most, &last);
+            }
+        }
+        Ok(RestOutcome {
+            reason: StopReason::StepLimit,
+            steps: criteria.max_steps,
+            last,
+        })
+    }
+
     /// How many particles moved `tolerance` or more over the last step.
     fn moving_particles(&self, tolerance: f64) -> usize {
         let t2 = tolerance * tolerance;
@@ -1053,10 +1063,10 @@ const EASY_SUBSTEPS: u32 = 4;
 
 /// The step after one of length `h` that went as `last`, on the way to rest from steps of
 /// `base` that may grow to `most`: [`GROWTH`] times longer after a step taken whole, by
-/// an implicit solve that converged, back to `base` after one that had to be cut (so the
-/// shortest substep stays what the solver's settings allow).
+/// an implicit solve that converged, back to `base` after one taken in substeps (a retry
+/// always is), so the shortest substep stays what the solver's settings allow.
 fn next_time_step(h: f64, base: f64, most: f64, last: &StepStats) -> f64 {
-    if last.retries > 0 || last.smallest_substep < h {
+    if last.smallest_substep < h {
         base
     } else if last.cg_converged {
         (GROWTH * h).min(most)
