@@ -108,6 +108,23 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             writeln!(out, "| {} | {} | {:.2} | {then} |", s.step, s.seam, 1e3 * s.gap)?;
         }
     }
+    if !report.caught_layers.is_empty() {
+        writeln!(
+            out,
+            "\nLayers of cloth found across a seam's sides while sewn, and the panel let through each:\n\n\
+             | step | seam | layer | let through it | pairs across | through after step |\n|---|---|---|---|---|---|"
+        )?;
+        for c in &report.caught_layers {
+            let passed = c
+                .passed
+                .map_or_else(|| "not by the weld".to_string(), |s| s.to_string());
+            writeln!(
+                out,
+                "| {} | {} | {} | {} | {} | {passed} |",
+                c.step, c.seam, c.layer, c.passing, c.pairs
+            )?;
+        }
+    }
     if !report.tangles.is_empty() {
         writeln!(
             out,

@@ -120,6 +120,9 @@ pub struct RunReport {
     pub largest_seam_gap: Option<f64>,
     /// When seams stopped closing while sewn, and how the pull was raised to close them.
     pub seam_stalls: Vec<crate::garment::sewing::SeamStall>,
+    /// Layers of cloth found across the seams' sides while sewn (a hood's edge between the
+    /// shoulders), and the panel let through each (garments only).
+    pub caught_layers: Vec<crate::garment::sewing::CaughtLayer>,
     /// The cloth's crossings the weld made, and those left after clearing them (garments
     /// that were sewn only).
     pub weld_crossings: Option<crate::garment::sewing::WeldCrossings>,

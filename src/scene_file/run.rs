@@ -46,6 +46,7 @@ impl Prepared {
         let outcome;
         let mut gap = None;
         let mut seam_stalls = Vec::new();
+        let mut caught_layers = Vec::new();
         let mut weld_crossings = None;
         let mut attached_particles = None;
         let mut sheet_test = None;
@@ -77,6 +78,9 @@ impl Prepared {
                         if progress.stalls.len() != seam_stalls.len() {
                             seam_stalls = progress.stalls.to_vec();
                         }
+                        if progress.caught != caught_layers.as_slice() {
+                            caught_layers = progress.caught.to_vec();
+                        }
                         rec.step(sim, s)
                     },
                 );
@@ -85,6 +89,7 @@ impl Prepared {
                         stages.push(rec.end("sewn"));
                         gap = Some(sewn.report.max_gap);
                         weld_crossings = Some(sewn.report.weld_crossings);
+                        caught_layers = sewn.report.caught.clone();
                         rec.begin("draping", drape_settings.max_steps);
                         match drape(
                             &sewn,
@@ -180,6 +185,7 @@ impl Prepared {
             thin_parts_passed: body.thin_parts_passed,
             largest_seam_gap: gap,
             seam_stalls,
+            caught_layers,
             weld_crossings,
             attached_particles,
             tangles,

@@ -34,8 +34,8 @@ pub use fabric::{
 pub use mesh::{ClothMesh, GridBuilder, GridDiagonals, GridShape};
 pub use metrics::{GridStretch, StrainReport};
 pub use self_contact::{
-    closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections, SelfCollision,
-    Tangle,
+    closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections, LayerPass,
+    LayerPassing, SelfCollision, Tangle,
 };
 pub use solver::{
     Constraint, ConstraintKind, Integrator, Interrupt, PcgSettings, Pin, PinMotion, RestCriteria,

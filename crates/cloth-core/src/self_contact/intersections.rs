@@ -104,6 +104,93 @@ pub(crate) fn crossings_by_chart(
     counted
 }
 
+/// Rings of particles round each particle of a pair, through the mesh and the seams,
+/// whose triangles are not counted across the pair: where seams meet at a corner (a
+/// crotch, an underarm) the panels' corners lie between each other's pairs as the seams
+/// close, and they are the seams closing, not a layer caught in them.
+const JOINED_RINGS: usize = 3;
+
+/// The triangles that the segment between each pair of `pairs` passes through at `x`, as
+/// (pair, triangle), sorted: the cloth lying between two particles that a seam pulls
+/// together. Triangles near either particle for good (see
+/// [`Topology::segment_triangle_exempt`]) or within [`JOINED_RINGS`] of it are not counted.
+pub(crate) fn across_pairs(topology: &Topology, x: &[Vec3], pairs: &[[usize; 2]]) -> Vec<(usize, usize)> {
+    let tris = &topology.triangles;
+    let tree = triangle_tree(topology, x);
+    pairs
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(k, &[a, b])| {
+            let (p, q) = (x[a], x[b]);
+            let mut found = Vec::new();
+            if a == b || p == q {
+                return found;
+            }
+            tree.query(&Aabb::of([p, q]), |t| {
+                if segment_crosses_triangle(&p, &q, &tris[t].map(|i| x[i as usize]))
+                    && !topology.segment_triangle_exempt(a, b, t)
+                {
+                    found.push((k, t));
+                }
+            });
+            if !found.is_empty() {
+                let mut joined = topology.joined_within(a, JOINED_RINGS);
+                joined.extend(topology.joined_within(b, JOINED_RINGS));
+                joined.sort_unstable();
+                found.retain(|&(_, t)| !topology.triangle_among(t, &joined));
+            }
+            found.sort_unstable();
+            found
+        })
+        .collect()
+}
+
+/// How many edge-triangle pairs of the two sets of particles in `sides` pass through each
+/// other at `x`: an edge of a triangle having a particle of one side against a triangle
+/// having one of the other, either way round (pairs exempt for good not counted).
+pub(crate) fn crossings_between(topology: &Topology, x: &[Vec3], sides: [&[usize]; 2]) -> usize {
+    let triangles_of = |particles: &[usize]| {
+        let mut t: Vec<usize> = particles
+            .iter()
+            .flat_map(|&p| topology.triangles_of(p).iter().map(|&t| t as usize))
+            .collect();
+        t.sort_unstable();
+        t.dedup();
+        t
+    };
+    let [one, other] = sides.map(triangles_of);
+    let edges_of = |tris: &[usize]| {
+        let mut e: Vec<usize> = tris
+            .iter()
+            .flat_map(|&t| topology.triangle_edges[t].map(|e| e as usize))
+            .collect();
+        e.sort_unstable();
+        e.dedup();
+        e
+    };
+    let crossing = |edges: &[usize], tris: &[usize]| {
+        let reach = tris.iter().fold(Aabb::empty(), |b, &t| {
+            b.union(&Aabb::of(topology.triangles[t].map(|i| x[i as usize])))
+        });
+        edges
+            .iter()
+            .map(|&e| {
+                let [a, b] = topology.edges[e].map(|i| x[i as usize]);
+                if !Aabb::of([a, b]).overlaps(&reach) {
+                    return 0;
+                }
+                tris.iter()
+                    .filter(|&&t| {
+                        let tri = topology.triangles[t].map(|i| x[i as usize]);
+                        segment_crosses_triangle(&a, &b, &tri) && !topology.edge_triangle_exempt(e, t)
+                    })
+                    .count()
+            })
+            .sum::<usize>()
+    };
+    crossing(&edges_of(&one), &other) + crossing(&edges_of(&other), &one)
+}
+
 /// The intersecting edge-triangle pairs of `mesh` at positions `x`: pairs sharing a
 /// particle, or particles that `seams` join, or within `rest_radius` of each other in the
 /// flat cloth are exempt (as self-collision exempts them; see

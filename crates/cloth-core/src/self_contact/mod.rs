@@ -27,6 +27,7 @@ mod cone;
 mod contour;
 pub mod geometry;
 mod intersections;
+mod layer_pass;
 mod proximity;
 mod response;
 mod settings;
@@ -52,6 +53,7 @@ pub struct Tangle {
     /// are still through each other.
     pub released: Option<u64>,
 }
+pub use layer_pass::{LayerPass, LayerPassing};
 pub use settings::SelfCollision;
 
 use crate::contact::SLIP_SPEED;
@@ -513,6 +515,27 @@ impl SelfContacts {
             .into_iter()
             .map(|(a, b)| [first[a as usize], first[b as usize]])
             .collect()
+    }
+
+    /// Makes the two sides of each of `passes` exempt from each other (and no others).
+    pub fn set_passes<'a>(&mut self, passes: impl IntoIterator<Item = &'a LayerPass>) {
+        self.topology.set_passes(
+            passes
+                .into_iter()
+                .map(|p| [p.layer.as_slice(), p.side.as_slice()]),
+        );
+    }
+
+    /// How many edge-triangle pairs of the two sides of `pass` pass through each other at
+    /// `x`.
+    pub fn pass_crossings(&self, pass: &LayerPass, x: &[Vec3]) -> usize {
+        intersections::crossings_between(&self.topology, x, [&pass.layer, &pass.side])
+    }
+
+    /// The triangles the segment between each of `pairs` passes through at `x`, as
+    /// (pair, triangle), sorted (triangles near either particle for good not counted).
+    pub fn across_pairs(&self, x: &[Vec3], pairs: &[[usize; 2]]) -> Vec<(usize, usize)> {
+        intersections::across_pairs(&self.topology, x, pairs)
     }
 
     /// Counts the intersecting edge-triangle pairs of the cloth at `x` (pairs sharing a

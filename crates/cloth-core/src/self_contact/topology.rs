@@ -47,6 +47,10 @@ pub(crate) struct Topology {
     /// simulation began: exempt from each other until they have come apart (see
     /// [`Topology::set_tangled`]).
     tangled: Vec<(u32, u32)>,
+    /// Per particle, the side of a layer pass it is on (`2 k` the layer of pass `k`,
+    /// `2 k + 1` the side let through it), or `u32::MAX`; empty while there are none (see
+    /// [`Topology::set_passes`]).
+    pass_side: Vec<u32>,
     /// Pairs this near in the flat cloth are exempt, m.
     rest_radius: f64,
 }
@@ -201,6 +205,7 @@ impl Topology {
             corner_uv,
             chart,
             tangled: Vec::new(),
+            pass_side: Vec::new(),
             rest_radius,
         }
     }
@@ -241,6 +246,33 @@ impl Topology {
 
     pub fn tangled(&self) -> &[(u32, u32)] {
         &self.tangled
+    }
+
+    /// Makes the two sides of each of `passes` (a layer and the cloth let through it)
+    /// exempt from each other, and no others. A particle on the sides of several passes is
+    /// on the first's.
+    pub fn set_passes<'a>(&mut self, passes: impl IntoIterator<Item = [&'a [usize]; 2]>) {
+        self.pass_side.clear();
+        for (k, sides) in passes.into_iter().enumerate() {
+            if self.pass_side.is_empty() {
+                self.pass_side.resize(self.rep.len(), u32::MAX);
+            }
+            for (side, particles) in sides.iter().enumerate() {
+                for &p in *particles {
+                    if let Some(mark) = self.pass_side.get_mut(p).filter(|m| **m == u32::MAX) {
+                        *mark = 2 * k as u32 + side as u32;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether particles `p` and `q` are on the two sides of one layer pass.
+    fn passing(&self, p: u32, q: u32) -> bool {
+        match (self.pass_side.get(p as usize), self.pass_side.get(q as usize)) {
+            (Some(&a), Some(&b)) => a != u32::MAX && b != u32::MAX && a ^ b == 1,
+            _ => false,
+        }
     }
 
     /// Whether charts `a` and `b` are exempt from each other, having begun tangled.
@@ -301,12 +333,21 @@ impl Topology {
     }
 
     /// Particle `p` and triangle `t` are not in contact (see the module's introduction),
-    /// nor while their charts are tangled.
+    /// nor while their charts are tangled or they are on the two sides of a layer pass.
     pub fn vertex_triangle_exempt(&self, p: usize, t: usize) -> bool {
-        if self.triangles[t].iter().any(|&i| self.near_in_mesh(p as u32, i)) {
+        if self.particle_tangled_with(p, self.chart[t]) {
             return true;
         }
-        if self.particle_tangled_with(p, self.chart[t]) {
+        if !self.pass_side.is_empty() && self.triangles[t].iter().any(|&q| self.passing(p as u32, q)) {
+            return true;
+        }
+        self.near_for_good(p, t)
+    }
+
+    /// Particle `p` and triangle `t` are near in the mesh or in the flat cloth (see the
+    /// module's introduction).
+    fn near_for_good(&self, p: usize, t: usize) -> bool {
+        if self.triangles[t].iter().any(|&i| self.near_in_mesh(p as u32, i)) {
             return true;
         }
         let [a, b, c] = self.material_triangle(t);
@@ -332,6 +373,13 @@ impl Topology {
             && self
                 .edge_triangles(f)
                 .any(|t| self.edge_tangled_with(e, self.chart[t]))
+        {
+            return true;
+        }
+        if !self.pass_side.is_empty()
+            && self.edges[e]
+                .iter()
+                .any(|&i| self.edges[f].iter().any(|&j| self.passing(i, j)))
         {
             return true;
         }
@@ -363,6 +411,40 @@ impl Topology {
                 material_distance(&p, &q, &tri) < self.rest_radius
             }
         })
+    }
+
+    /// Whether the segment between particles `a` and `b` (a seam's pair) is never counted
+    /// as crossing triangle `t`: `t` is near either of them for good (see
+    /// [`Topology::vertex_triangle_exempt`]).
+    pub fn segment_triangle_exempt(&self, a: usize, b: usize, t: usize) -> bool {
+        self.near_for_good(a, t) || self.near_for_good(b, t)
+    }
+
+    /// The representatives within `rings` edges of particle `p`'s, seam partners counting
+    /// as one, sorted.
+    pub fn joined_within(&self, p: usize, rings: usize) -> Vec<u32> {
+        let mut found = vec![self.rep[p]];
+        let mut frontier = found.clone();
+        for _ in 0..rings {
+            let mut next: Vec<u32> = frontier
+                .iter()
+                .flat_map(|&r| row(&self.neighbours, r as usize).iter().copied())
+                .filter(|r| found.binary_search(r).is_err())
+                .collect();
+            next.sort_unstable();
+            next.dedup();
+            found.extend_from_slice(&next);
+            found.sort_unstable();
+            frontier = next;
+        }
+        found
+    }
+
+    /// Whether some corner of triangle `t` is one of `reps` (sorted representatives).
+    pub fn triangle_among(&self, t: usize, reps: &[u32]) -> bool {
+        self.triangles[t]
+            .iter()
+            .any(|&i| reps.binary_search(&self.rep[i as usize]).is_ok())
     }
 
     /// Whether triangle `t` speaks for the nearest point at barycentric `weights`: always
@@ -481,5 +563,66 @@ mod tests {
             let near = topo.triangles[t].iter().any(|&i| topo.near_in_mesh(4, i));
             assert_eq!(topo.vertex_triangle_exempt(4, t), near, "triangle {t}");
         }
+    }
+
+    #[test]
+    fn a_layer_pass_exempts_its_two_sides_from_each_other_and_nothing_else() {
+        // Two pieces 3 x 3 apart: the first's particles are the layer, the second's first
+        // row the side let through it.
+        let piece = |z: f64| {
+            GridBuilder::new(3, 3)
+                .size(0.2, 0.2)
+                .origin(Vec3::new(0.0, 0.0, z))
+                .build()
+                .unwrap()
+        };
+        let mesh = ClothMesh::join(&[piece(0.0), piece(0.1)]).unwrap();
+        let mut topo = Topology::new(&mesh, &[], 1e-3);
+        let layer: Vec<usize> = (0..9).collect();
+        let side: Vec<usize> = (9..12).collect();
+        // The triangles not near particle `p` in the mesh.
+        fn far_from(topo: &Topology, p: usize) -> Vec<usize> {
+            (0..topo.triangles.len())
+                .filter(|&t| !topo.triangles[t].iter().any(|&i| topo.near_in_mesh(p as u32, i)))
+                .collect()
+        }
+        let none_exempt = |topo: &Topology| {
+            (0..18).all(|p| {
+                far_from(topo, p)
+                    .into_iter()
+                    .all(|t| !topo.vertex_triangle_exempt(p, t))
+            })
+        };
+        assert!(none_exempt(&topo));
+        topo.set_passes([[layer.as_slice(), side.as_slice()]]);
+        for p in 0..18 {
+            for t in far_from(&topo, p) {
+                let has = |set: &[usize]| topo.triangles[t].iter().any(|&i| set.contains(&(i as usize)));
+                let expected = (layer.contains(&p) && has(&side)) || (side.contains(&p) && has(&layer));
+                assert_eq!(
+                    topo.vertex_triangle_exempt(p, t),
+                    expected,
+                    "particle {p}, triangle {t}"
+                );
+            }
+        }
+        for e in 0..topo.edges.len() {
+            for f in 0..topo.edges.len() {
+                let ends =
+                    |k: usize, set: &[usize]| topo.edges[k].iter().any(|&i| set.contains(&(i as usize)));
+                let expected = (ends(e, &layer) && ends(f, &side)) || (ends(e, &side) && ends(f, &layer));
+                if expected {
+                    assert!(topo.edge_edge_exempt(e, f), "edges {e} {f}");
+                }
+                let same_piece = topo.edges[e][0] < 9 && topo.edges[f][0] < 9
+                    || topo.edges[e][0] >= 9 && topo.edges[f][0] >= 9;
+                if !expected && !same_piece {
+                    assert!(!topo.edge_edge_exempt(e, f), "edges {e} {f}");
+                }
+            }
+        }
+        // Passes ended, nothing is exempt across the pieces.
+        topo.set_passes([]);
+        assert!(none_exempt(&topo));
     }
 }

@@ -10,7 +10,7 @@ use crate::error::{DivergenceReason, ParamError, SimError};
 use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
 use crate::mesh::ClothMesh;
-use crate::self_contact::{Intersections, SelfContacts, StepEnd, Tangle};
+use crate::self_contact::{Intersections, LayerPass, LayerPassing, SelfContacts, StepEnd, Tangle};
 use crate::Vec3;
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -304,6 +304,7 @@ impl SimulationBuilder {
             joined,
             self_contacts,
             tangles,
+            passes: Vec::new(),
             x,
             v,
             time: 0.0,
@@ -379,6 +380,8 @@ pub struct Simulation {
     pub(super) self_contacts: Option<SelfContacts>,
     /// The pieces of the cloth found passing through each other at the start.
     pub(super) tangles: Vec<Tangle>,
+    /// The layers of cloth let through other cloth (see [`LayerPass`]), ended or not.
+    pub(super) passes: Vec<LayerPassing>,
     pub(super) x: Vec<Vec3>,
     pub(super) v: Vec<Vec3>,
     pub(super) time: f64,
@@ -485,6 +488,7 @@ impl Simulation {
             }
         }
         self.settings = settings;
+        self.exempt_passes();
         Ok(())
     }
     /// Replaces the velocities (one finite vector per particle).
@@ -587,6 +591,7 @@ impl Simulation {
         self.time = start_time + h;
         self.steps += 1;
         self.release_tangles();
+        self.end_passed();
         total.step = self.steps;
         total.time = self.time;
         total.smallest_substep = h / (1u64 << finest) as f64;
@@ -992,6 +997,72 @@ impl Simulation {
     /// [`Tangle`]), and when each came apart.
     pub fn tangles(&self) -> &[Tangle] {
         &self.tangles
+    }
+
+    /// Lets each of `passes` through its layer from now on (see [`LayerPass`]); without
+    /// self-collision they have nothing to pass.
+    pub fn add_layer_passes(&mut self, passes: impl IntoIterator<Item = LayerPass>) {
+        let since = self.steps;
+        self.passes.extend(passes.into_iter().map(|pass| LayerPassing {
+            pass,
+            since,
+            crossed: false,
+            ended: None,
+        }));
+        self.exempt_passes();
+    }
+
+    /// Ends every layer pass still holding: the cloth collides with all of itself again.
+    pub fn end_layer_passes(&mut self) {
+        for p in self.passes.iter_mut().filter(|p| p.ended.is_none()) {
+            p.ended = Some(self.steps);
+        }
+        self.exempt_passes();
+    }
+
+    /// The layer passes given, and how each went.
+    pub fn layer_passes(&self) -> &[LayerPassing] {
+        &self.passes
+    }
+
+    /// The triangles the segment between each of `pairs` (particle pairs, such as a
+    /// seam's) passes through now, as (pair, triangle), sorted; triangles near either
+    /// particle in the mesh or in the flat cloth are not counted. Empty without
+    /// self-collision.
+    pub fn cloth_across(&self, pairs: &[[usize; 2]]) -> Vec<(usize, usize)> {
+        let n = self.x.len();
+        if pairs.iter().flatten().any(|&i| i >= n) {
+            return Vec::new();
+        }
+        self.self_contacts
+            .as_ref()
+            .map_or_else(Vec::new, |sc| sc.across_pairs(&self.x, pairs))
+    }
+
+    /// Gives the self-collision the passes still holding.
+    fn exempt_passes(&mut self) {
+        if let Some(sc) = self.self_contacts.as_mut() {
+            sc.set_passes(self.passes.iter().filter(|p| p.ended.is_none()).map(|p| &p.pass));
+        }
+    }
+
+    /// Ends the layer passes whose sides have passed through each other and are apart.
+    fn end_passed(&mut self) {
+        let Some(sc) = self.self_contacts.as_ref() else {
+            return;
+        };
+        let mut ended = false;
+        for p in self.passes.iter_mut().filter(|p| p.ended.is_none()) {
+            if sc.pass_crossings(&p.pass, &self.x) > 0 {
+                p.crossed = true;
+            } else if p.crossed {
+                p.ended = Some(self.steps);
+                ended = true;
+            }
+        }
+        if ended {
+            self.exempt_passes();
+        }
     }
 
     /// Lets the tangled pieces that have come apart collide again.

@@ -1,14 +1,17 @@
 //! The source's second and third stages: sew the placed panels with gravity off, weld
 //! the seams, then drape with gravity on until at rest.
 
+mod caught;
 mod settings;
 mod weld_crossings;
 
+pub use caught::CaughtLayer;
 pub use settings::{DrapeSettings, SewingSettings};
 pub use weld_crossings::WeldCrossings;
 
 use crate::garment::{Garment, GarmentError, Welded};
 use crate::pattern::BodyPart;
+use caught::Catcher;
 use cloth_core::{
     Attachment, Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError,
     Simulation,
@@ -31,6 +34,9 @@ pub struct SewingReport {
     pub pull: f64,
     /// Each time the seams stalled, and how the pull was raised to close them.
     pub stalls: Vec<SeamStall>,
+    /// The layers of cloth found across the seams, and whether the side let through each
+    /// was through it by the weld.
+    pub caught: Vec<CaughtLayer>,
     /// The cloth's crossings the weld made, and those left after clearing them.
     pub weld_crossings: WeldCrossings,
 }
@@ -58,6 +64,8 @@ pub struct SewingProgress<'a> {
     pub seam: &'a str,
     /// The stalls so far, and how the pull was raised.
     pub stalls: &'a [SeamStall],
+    /// The layers found across the seams so far, and whether they have passed.
+    pub caught: &'a [CaughtLayer],
 }
 
 /// The garment sewn: its welded mesh at the positions where the seams closed.
@@ -173,8 +181,29 @@ pub fn sew(
         pull_factor,
         welded,
     };
-    while gap >= settings.gap_tolerance {
+    let mut catcher = Catcher::new(garment);
+    // The step until which closed seams are sewn on while a layer found across them passes
+    // (a stall's window after it was found), and how many times they were found closed
+    // over cloth.
+    let (mut sew_on_until, mut closing_catches) = (0, 0);
+    loop {
+        if gap < settings.gap_tolerance {
+            let passing = sim.layer_passes().iter().any(|p| p.ended.is_none());
+            if steps < sew_on_until && passing {
+                // Closed over a layer being let through: sewn on until it is through.
+            } else if closing_catches < CLOSING_CATCHES
+                && catcher.catch(garment, &mut sim, bodies.as_ref(), steps) > 0
+            {
+                closing_catches += 1;
+                sew_on_until = steps + stall.window;
+            } else {
+                break;
+            }
+        }
         if steps == settings.max_steps {
+            if gap < settings.gap_tolerance {
+                break;
+            }
             return Err(GarmentError::NotSewn {
                 steps,
                 seam: garment.seams[seam].name.clone(),
@@ -183,8 +212,12 @@ pub fn sew(
             });
         }
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
-        if ramp >= 1.0 && stall.stalled(gap, steps) {
-            if pull_level.at_most() {
+        if ramp >= 1.0 && gap >= settings.gap_tolerance && stall.stalled(gap, steps) {
+            if catcher.catch(garment, &mut sim, bodies.as_ref(), steps) > 0 {
+                // Held open by cloth across the seams: a side is let through it before the
+                // pull is raised.
+                sew_on_until = steps + stall.window;
+            } else if pull_level.at_most() {
                 // Held open against any pull: closed by welding where they stand, if near.
                 let weld = FORCED_WELD * spacing;
                 if gap > weld {
@@ -247,6 +280,7 @@ pub fn sew(
             gap,
             seam: &garment.seams[seam].name,
             stalls: &stalls,
+            caught: catcher.update(&sim),
         };
         if observe(&sim, &stats, &progress).is_break() {
             return Err(GarmentError::Stopped {
@@ -255,6 +289,7 @@ pub fn sew(
             });
         }
     }
+    let caught = catcher.update(&sim).to_vec();
     let mut welded = garment.weld(sim.positions())?;
     let weld_crossings = weld_crossings::clear(
         &mut welded,
@@ -297,6 +332,7 @@ pub fn sew(
             max_gap: gap,
             pull,
             stalls,
+            caught,
             weld_crossings,
         },
         bending_calibration: sim.bending_calibration().to_vec(),
@@ -451,6 +487,10 @@ const BOOST_STEP: f64 = 4.0;
 /// a side seam stayed 4.2 mm open with the pull at 1,024 times its strength (the cloth
 /// beside it at 31 % weft).
 pub const FORCED_WELD: f64 = 0.5;
+
+/// How many times the closed seams are looked over for cloth across them before they are
+/// welded: each time, what was found is let through and sewn on for a stall's window.
+const CLOSING_CATCHES: usize = 3;
 
 /// The pull raised up to this many times its strength is a stiffer spring within the same
 /// reach; beyond, a spring of that stiffness over a longer reach.

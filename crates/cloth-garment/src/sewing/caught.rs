@@ -1,0 +1,220 @@
+//! Layers caught between a seam's sides while it closes (see [`cloth_core::LayerPass`]).
+//! Of the two sides, the one farther from the bodies is let through the layer: the nearer
+//! one carries it out along with it as the seam closes, so it ends outside the seam, where
+//! GarmentCode means its hoods, collars and sleeves to hang.
+
+use crate::garment::Garment;
+use cloth_core::{Collider, LayerPass, Proximity, Simulation};
+use std::collections::BTreeMap;
+
+/// A layer of cloth found across a seam's pairs, and the panel let through it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CaughtLayer {
+    /// The sewing step after which it was found.
+    pub step: u64,
+    /// The seam of the first pair it lay across.
+    pub seam: String,
+    /// The panel caught, and the panel let through it.
+    pub layer: String,
+    pub passing: String,
+    /// How many of the seams' pairs it lay across.
+    pub pairs: usize,
+    /// The step after which the two were through each other and apart; `None` if they
+    /// were not by the weld.
+    pub passed: Option<u64>,
+}
+
+/// Rings of particles round the triangles found across a pair that make up the layer let
+/// through, and round the pair's particle that make up the side let through it: enough
+/// cloth on both that the side's edge comes out of the layer whole, not a few particles of
+/// it hooked through.
+const LAYER_RINGS: usize = 2;
+const SIDE_RINGS: usize = 3;
+
+/// Pairs nearer than this are closed, m: nothing lies between.
+const CLOSED: f64 = 1e-6;
+
+/// How far from the bodies a particle is looked at, m; beyond, it is as far as any.
+const REACH: f64 = 0.2;
+
+/// The cloth found across the pairs of one panel's seams, caught from one other panel:
+/// the particles of the triangles found, the particles of the side let through it, how
+/// many pairs, and the first pair's seam.
+struct Group {
+    layer: Vec<usize>,
+    side: Vec<usize>,
+    pairs: usize,
+    seam: usize,
+}
+
+/// Finds the layers caught in the seams of a garment being sewn.
+pub(super) struct Catcher {
+    pairs: Vec<[usize; 2]>,
+    /// The seam of each pair.
+    seam_of: Vec<usize>,
+    /// The panel of each particle.
+    panel_of: Vec<usize>,
+    /// Each particle's neighbours along the mesh's edges, in compressed rows.
+    start: Vec<usize>,
+    neighbours: Vec<usize>,
+    /// What was found, and the simulation's pass for each.
+    found: Vec<CaughtLayer>,
+    pass_of: Vec<usize>,
+}
+
+impl Catcher {
+    pub(super) fn new(garment: &Garment) -> Self {
+        let n = garment.mesh.vertex_count();
+        let (mut pairs, mut seam_of) = (Vec::new(), Vec::new());
+        for (k, seam) in garment.seams.iter().enumerate() {
+            pairs.extend(seam.pairs.iter().copied());
+            seam_of.extend(std::iter::repeat_n(k, seam.pairs.len()));
+        }
+        let mut panel_of = vec![0; n];
+        for (t, tri) in garment.mesh.triangles().iter().enumerate() {
+            for &i in tri {
+                panel_of[i] = garment.triangle_panel[t];
+            }
+        }
+        let edges = garment.mesh.edges();
+        let mut start = vec![0; n + 1];
+        for e in edges {
+            start[e[0] + 1] += 1;
+            start[e[1] + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut cursor = start.clone();
+        let mut neighbours = vec![0; start[n]];
+        for &[a, b] in edges {
+            neighbours[cursor[a]] = b;
+            cursor[a] += 1;
+            neighbours[cursor[b]] = a;
+            cursor[b] += 1;
+        }
+        Self {
+            pairs,
+            seam_of,
+            panel_of,
+            start,
+            neighbours,
+            found: Vec::new(),
+            pass_of: Vec::new(),
+        }
+    }
+
+    /// Finds the cloth lying across the seams' open pairs of `sim` after sewing step
+    /// `step`, not already let through, and lets a side of each through it; returns how
+    /// many layers were found.
+    pub(super) fn catch(
+        &mut self,
+        garment: &Garment,
+        sim: &mut Simulation,
+        bodies: &dyn Collider,
+        step: u64,
+    ) -> usize {
+        let x = sim.positions();
+        let open: Vec<usize> = (0..self.pairs.len())
+            .filter(|&k| {
+                let [a, b] = self.pairs[k];
+                (x[a] - x[b]).norm() > CLOSED
+            })
+            .collect();
+        let segments: Vec<[usize; 2]> = open.iter().map(|&k| self.pairs[k]).collect();
+        let across = sim.cloth_across(&segments);
+        if across.is_empty() {
+            return 0;
+        }
+        let holding: Vec<&LayerPass> = sim
+            .layer_passes()
+            .iter()
+            .filter(|p| p.ended.is_none())
+            .map(|p| &p.pass)
+            .collect();
+        let t = sim.time();
+        let distance = |i: usize| match bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) {
+            Proximity::Near(p) => p.distance,
+            Proximity::Far { .. } => f64::INFINITY,
+        };
+        let triangles = garment.mesh.triangles();
+        let mut groups: BTreeMap<(usize, usize), Group> = BTreeMap::new();
+        for (k, tri) in across {
+            let pair = open[k];
+            let [a, b] = self.pairs[pair];
+            let (outer, inner) = if distance(a) > distance(b) { (a, b) } else { (b, a) };
+            let layer = garment.triangle_panel[tri];
+            let side = match [outer, inner].into_iter().find(|&i| self.panel_of[i] != layer) {
+                Some(side) => side,
+                None => continue,
+            };
+            let covered = holding
+                .iter()
+                .any(|p| p.side.contains(&side) && triangles[tri].iter().all(|i| p.layer.contains(i)));
+            if covered {
+                continue;
+            }
+            let group = groups
+                .entry((layer, self.panel_of[side]))
+                .or_insert_with(|| Group {
+                    layer: Vec::new(),
+                    side: Vec::new(),
+                    pairs: 0,
+                    seam: self.seam_of[pair],
+                });
+            group.layer.extend_from_slice(&triangles[tri]);
+            group.side.push(side);
+            group.pairs += 1;
+        }
+        let found = groups.len();
+        let first = sim.layer_passes().len();
+        let mut passes = Vec::new();
+        for (k, ((layer, passing), group)) in groups.into_iter().enumerate() {
+            passes.push(LayerPass {
+                layer: self.grown(group.layer, LAYER_RINGS),
+                side: self.grown(group.side, SIDE_RINGS),
+            });
+            let caught = CaughtLayer {
+                step,
+                seam: garment.seams[group.seam].name.clone(),
+                layer: garment.panel_names[layer].clone(),
+                passing: garment.panel_names[passing].clone(),
+                pairs: group.pairs,
+                passed: None,
+            };
+            self.found.push(caught);
+            self.pass_of.push(first + k);
+        }
+        sim.add_layer_passes(passes);
+        found
+    }
+
+    /// `particles` and those within `rings` edges of them, sorted.
+    fn grown(&self, mut particles: Vec<usize>, rings: usize) -> Vec<usize> {
+        particles.sort_unstable();
+        particles.dedup();
+        let mut frontier = particles.clone();
+        for _ in 0..rings {
+            let mut next: Vec<usize> = frontier
+                .iter()
+                .flat_map(|&i| self.neighbours[self.start[i]..self.start[i + 1]].iter().copied())
+                .filter(|i| particles.binary_search(i).is_err())
+                .collect();
+            next.sort_unstable();
+            next.dedup();
+            particles.extend_from_slice(&next);
+            particles.sort_unstable();
+            frontier = next;
+        }
+        particles
+    }
+
+    /// Notes which of the layers found have passed in `sim`, and returns them all.
+    pub(super) fn update(&mut self, sim: &Simulation) -> &[CaughtLayer] {
+        let passes = sim.layer_passes();
+        for (caught, &k) in self.found.iter_mut().zip(&self.pass_of) {
+            caught.passed = passes.get(k).and_then(|p| p.ended);
+        }
+        &self.found
+    }
+}
