@@ -2,8 +2,10 @@
 
 mod cloth_mesh;
 mod grid;
+mod rings;
 mod topology;
 
 pub use cloth_mesh::{ClothMesh, GridShape};
 pub use grid::{GridBuilder, GridDiagonals};
+pub use rings::within_rings;
 pub use topology::Hinge;

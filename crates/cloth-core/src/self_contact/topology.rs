@@ -11,7 +11,7 @@
 //! its own thickness, nor within one cell without folding its cells flat.
 
 use super::geometry::{closest_on_segments, closest_on_triangle, segment_crosses_triangle};
-use crate::mesh::ClothMesh;
+use crate::mesh::{within_rings, ClothMesh};
 use crate::Vec3;
 use nalgebra::Vector2;
 
@@ -423,21 +423,9 @@ impl Topology {
     /// The representatives within `rings` edges of particle `p`'s, seam partners counting
     /// as one, sorted.
     pub fn joined_within(&self, p: usize, rings: usize) -> Vec<u32> {
-        let mut found = vec![self.rep[p]];
-        let mut frontier = found.clone();
-        for _ in 0..rings {
-            let mut next: Vec<u32> = frontier
-                .iter()
-                .flat_map(|&r| row(&self.neighbours, r as usize).iter().copied())
-                .filter(|r| found.binary_search(r).is_err())
-                .collect();
-            next.sort_unstable();
-            next.dedup();
-            found.extend_from_slice(&next);
-            found.sort_unstable();
-            frontier = next;
-        }
-        found
+        within_rings(vec![self.rep[p]], rings, |r| {
+            row(&self.neighbours, r as usize).iter().copied()
+        })
     }
 
     /// Whether some corner of triangle `t` is one of `reps` (sorted representatives).

@@ -4,7 +4,7 @@
 //! GarmentCode means its hoods, collars and sleeves to hang.
 
 use crate::garment::Garment;
-use cloth_core::{Collider, LayerPass, Proximity, Simulation};
+use cloth_core::{within_rings, Collider, LayerPass, Proximity, Simulation};
 use std::collections::BTreeMap;
 
 /// A layer of cloth found across a seam's pairs, and the panel let through it.
@@ -190,23 +190,10 @@ impl Catcher {
     }
 
     /// `particles` and those within `rings` edges of them, sorted.
-    fn grown(&self, mut particles: Vec<usize>, rings: usize) -> Vec<usize> {
-        particles.sort_unstable();
-        particles.dedup();
-        let mut frontier = particles.clone();
-        for _ in 0..rings {
-            let mut next: Vec<usize> = frontier
-                .iter()
-                .flat_map(|&i| self.neighbours[self.start[i]..self.start[i + 1]].iter().copied())
-                .filter(|i| particles.binary_search(i).is_err())
-                .collect();
-            next.sort_unstable();
-            next.dedup();
-            particles.extend_from_slice(&next);
-            particles.sort_unstable();
-            frontier = next;
-        }
-        particles
+    fn grown(&self, particles: Vec<usize>, rings: usize) -> Vec<usize> {
+        within_rings(particles, rings, |i| {
+            self.neighbours[self.start[i]..self.start[i + 1]].iter().copied()
+        })
     }
 
     /// Notes which of the layers found have passed in `sim`, and returns them all.
