@@ -53,6 +53,18 @@ fn sheet_onto_layer() -> (Simulation, usize) {
     (sim, layer)
 }
 
+/// [`sheet_onto_layer`], the sheet let through the layer.
+fn sheet_let_through_layer() -> (Simulation, usize) {
+    let (mut sim, layer) = sheet_onto_layer();
+    let n = sim.positions().len();
+    sim.add_layer_passes([LayerPass {
+        layer: (0..layer).collect(),
+        side: (layer..n).collect(),
+    }])
+    .unwrap();
+    (sim, layer)
+}
+
 fn highest(x: &[Vec3]) -> f64 {
     x.iter().map(|p| p.z).fold(f64::MIN, f64::max)
 }
@@ -63,12 +75,7 @@ fn lowest(x: &[Vec3]) -> f64 {
 
 #[test]
 fn a_sheet_let_through_a_layer_passes_it_and_collides_with_it_once_apart() {
-    let (mut sim, layer) = sheet_onto_layer();
-    let n = sim.positions().len();
-    sim.add_layer_passes([LayerPass {
-        layer: (0..layer).collect(),
-        side: (layer..n).collect(),
-    }]);
+    let (mut sim, layer) = sheet_let_through_layer();
     for _ in 0..20 {
         sim.step().unwrap();
     }
@@ -130,12 +137,7 @@ fn without_a_pass_the_sheet_lands_on_the_layer() {
 
 #[test]
 fn a_pass_ended_by_its_caller_holds_no_more() {
-    let (mut sim, layer) = sheet_onto_layer();
-    let n = sim.positions().len();
-    sim.add_layer_passes([LayerPass {
-        layer: (0..layer).collect(),
-        side: (layer..n).collect(),
-    }]);
+    let (mut sim, layer) = sheet_let_through_layer();
     sim.end_layer_passes();
     assert_eq!(sim.layer_passes()[0].ended, Some(0));
     assert!(!sim.layer_passes()[0].crossed);
@@ -171,12 +173,14 @@ fn the_cloth_across_a_pair_is_the_layer_between_its_particles() {
         + (0..441)
             .find(|&i| x[bottom + i].x > 0.18 && x[bottom + i].y > 0.18)
             .unwrap();
-    let across = sim.cloth_across(&[
-        [above, below],
-        [above, beside],
-        [above, above + 1],
-        [below, above],
-    ]);
+    let across = sim
+        .cloth_across(&[
+            [above, below],
+            [above, beside],
+            [above, above + 1],
+            [below, above],
+        ])
+        .unwrap();
     let crossed: Vec<usize> = across.iter().map(|&(k, _)| k).collect();
     assert!(
         !crossed.is_empty() && crossed.iter().all(|&k| k == 0 || k == 3),
@@ -187,4 +191,24 @@ fn the_cloth_across_a_pair_is_the_layer_between_its_particles() {
         assert!(tri.iter().all(|&i| (top..bottom).contains(&i)), "{tri:?}");
     }
     assert!(crossed.contains(&3), "the pair either way round");
+}
+
+#[test]
+fn particles_not_of_the_cloth_are_refused_and_nothing_is_added() {
+    let (mut sim, layer) = sheet_onto_layer();
+    let n = sim.positions().len();
+    let refused = sim.add_layer_passes([
+        LayerPass {
+            layer: (0..layer).collect(),
+            side: vec![layer],
+        },
+        LayerPass {
+            layer: vec![0],
+            side: vec![n],
+        },
+    ]);
+    assert!(refused.unwrap_err().to_string().contains("layer_passes"));
+    assert!(sim.layer_passes().is_empty());
+    let refused = sim.cloth_across(&[[0, n + 3]]);
+    assert!(refused.unwrap_err().to_string().contains(&(n + 3).to_string()));
 }

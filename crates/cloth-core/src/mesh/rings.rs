@@ -1,5 +1,47 @@
 //! What lies within a few edges of a set of vertices.
 
+use super::ClothMesh;
+
+/// Each vertex's neighbours along a mesh's edges, in compressed rows.
+#[derive(Debug, Clone)]
+pub struct Neighbours {
+    start: Vec<usize>,
+    list: Vec<usize>,
+}
+
+impl Neighbours {
+    pub fn of(mesh: &ClothMesh) -> Self {
+        let n = mesh.vertex_count();
+        let mut start = vec![0; n + 1];
+        for e in mesh.edges() {
+            start[e[0] + 1] += 1;
+            start[e[1] + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut cursor = start.clone();
+        let mut list = vec![0; start[n]];
+        for &[a, b] in mesh.edges() {
+            list[cursor[a]] = b;
+            cursor[a] += 1;
+            list[cursor[b]] = a;
+            cursor[b] += 1;
+        }
+        Self { start, list }
+    }
+
+    /// The vertices joined to vertex `i` by an edge.
+    pub fn of_vertex(&self, i: usize) -> &[usize] {
+        &self.list[self.start[i]..self.start[i + 1]]
+    }
+
+    /// `vertices` and those within `rings` edges of them, sorted, each once.
+    pub fn around(&self, vertices: Vec<usize>, rings: usize) -> Vec<usize> {
+        within_rings(vertices, rings, |i| self.of_vertex(i).iter().copied())
+    }
+}
+
 /// `seeds` and all that lies within `rings` steps of them, a step going from an item to
 /// those `neighbours` gives for it; sorted, each once.
 pub fn within_rings<T, I>(mut seeds: Vec<T>, rings: usize, neighbours: impl Fn(T) -> I) -> Vec<T>
@@ -40,5 +82,30 @@ mod tests {
         assert_eq!(within_rings(vec![5], 2, neighbours), vec![3, 4, 5, 6, 7]);
         assert_eq!(within_rings(vec![0, 9, 0], 1, neighbours), vec![0, 1, 8, 9]);
         assert_eq!(within_rings(vec![4], 20, neighbours), (0..10).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_grid_vertex_has_its_edge_neighbours_and_two_rings_reach_two_cells() {
+        // 4 x 3 grid, diagonals one way: vertex 5 (second row, second column).
+        let mesh = crate::GridBuilder::new(4, 3).size(0.3, 0.2).build().unwrap();
+        let neighbours = Neighbours::of(&mesh);
+        for i in 0..mesh.vertex_count() {
+            let mut expected: Vec<usize> = mesh
+                .edges()
+                .iter()
+                .filter_map(|e| (e[0] == i).then_some(e[1]).or((e[1] == i).then_some(e[0])))
+                .collect();
+            expected.sort_unstable();
+            let mut got = neighbours.of_vertex(i).to_vec();
+            got.sort_unstable();
+            assert_eq!(got, expected, "vertex {i}");
+        }
+        assert_eq!(neighbours.around(vec![0], 0), vec![0]);
+        assert_eq!(neighbours.around(vec![0, 0], 20), (0..12).collect::<Vec<_>>());
+        let two = neighbours.around(vec![0], 2);
+        assert!(
+            two.contains(&2) && two.contains(&8) && !two.contains(&3),
+            "{two:?}"
+        );
     }
 }

@@ -145,29 +145,42 @@ pub(crate) fn across_pairs(topology: &Topology, x: &[Vec3], pairs: &[[usize; 2]]
         .collect()
 }
 
-/// How many edge-triangle pairs of the two sets of particles in `sides` pass through each
-/// other at `x`: an edge of a triangle having a particle of one side against a triangle
-/// having one of the other, either way round (pairs exempt for good not counted).
-pub(crate) fn crossings_between(topology: &Topology, x: &[Vec3], sides: [&[usize]; 2]) -> usize {
-    let triangles_of = |particles: &[usize]| {
-        let mut t: Vec<usize> = particles
-            .iter()
-            .flat_map(|&p| topology.triangles_of(p).iter().map(|&t| t as usize))
-            .collect();
-        t.sort_unstable();
-        t.dedup();
-        t
-    };
-    let [one, other] = sides.map(triangles_of);
-    let edges_of = |tris: &[usize]| {
-        let mut e: Vec<usize> = tris
-            .iter()
-            .flat_map(|&t| topology.triangle_edges[t].map(|e| e as usize))
-            .collect();
-        e.sort_unstable();
-        e.dedup();
-        e
-    };
+/// The two sides of a layer pass as the cloth's primitives: the triangles having a
+/// particle of each side, and their edges; found once, when the pass begins.
+#[derive(Debug, Clone)]
+pub(crate) struct PassRegion {
+    triangles: [Vec<usize>; 2],
+    edges: [Vec<usize>; 2],
+}
+
+impl PassRegion {
+    pub(crate) fn new(topology: &Topology, sides: [&[usize]; 2]) -> Self {
+        let triangles = sides.map(|particles| {
+            let mut t: Vec<usize> = particles
+                .iter()
+                .flat_map(|&p| topology.triangles_of(p).iter().map(|&t| t as usize))
+                .collect();
+            t.sort_unstable();
+            t.dedup();
+            t
+        });
+        let edges = [0, 1].map(|k| {
+            let mut e: Vec<usize> = triangles[k]
+                .iter()
+                .flat_map(|&t| topology.triangle_edges[t].map(|e| e as usize))
+                .collect();
+            e.sort_unstable();
+            e.dedup();
+            e
+        });
+        Self { triangles, edges }
+    }
+}
+
+/// How many edge-triangle pairs of the two sides of `region` pass through each other at
+/// `x`: an edge of one side against a triangle of the other, either way round (pairs
+/// exempt for good not counted).
+pub(crate) fn crossings_between(topology: &Topology, x: &[Vec3], region: &PassRegion) -> usize {
     let crossing = |edges: &[usize], tris: &[usize]| {
         let reach = tris.iter().fold(Aabb::empty(), |b, &t| {
             b.union(&Aabb::of(topology.triangles[t].map(|i| x[i as usize])))
@@ -188,7 +201,8 @@ pub(crate) fn crossings_between(topology: &Topology, x: &[Vec3], sides: [&[usize
             })
             .sum::<usize>()
     };
-    crossing(&edges_of(&one), &other) + crossing(&edges_of(&other), &one)
+    let [one, other] = &region.triangles;
+    crossing(&region.edges[0], other) + crossing(&region.edges[1], one)
 }
 
 /// The intersecting edge-triangle pairs of `mesh` at positions `x`: pairs sharing a

@@ -22,8 +22,6 @@ pub struct LayerPass {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct LayerPassing {
     pub pass: LayerPass,
-    /// The step after which it began.
-    pub since: u64,
     /// Whether the two sides were seen passing through each other.
     pub crossed: bool,
     /// The step after which it ended (the sides through each other and apart, or the pass

@@ -146,6 +146,9 @@ fn index_by_particle(contacts: &[Contact], n: usize, rows: &mut Vec<u32>, list: 
 #[derive(Debug)]
 pub(crate) struct SelfContacts {
     topology: Topology,
+    /// The sides of the layer passes holding, in the order given (see
+    /// [`SelfContacts::set_passes`]).
+    pass_regions: Vec<intersections::PassRegion>,
     /// Each particle's half thickness (its share of a contact distance) and friction.
     half_thickness: Vec<f64>,
     /// Each particle's inverse mass, zero when pinned.
@@ -206,6 +209,7 @@ impl SelfContacts {
                 .unwrap_or(STIFFNESS_FRACTION * membrane_stiffness),
             response: response::Scratch::new(n),
             topology,
+            pass_regions: Vec::new(),
             half_thickness,
             inv_mass: masses
                 .iter()
@@ -518,18 +522,23 @@ impl SelfContacts {
     }
 
     /// Makes the two sides of each of `passes` exempt from each other (and no others).
+    /// Their particles must be the cloth's.
     pub fn set_passes<'a>(&mut self, passes: impl IntoIterator<Item = &'a LayerPass>) {
-        self.topology.set_passes(
-            passes
-                .into_iter()
-                .map(|p| [p.layer.as_slice(), p.side.as_slice()]),
-        );
+        let sides: Vec<[&[usize]; 2]> = passes
+            .into_iter()
+            .map(|p| [p.layer.as_slice(), p.side.as_slice()])
+            .collect();
+        self.topology.set_passes(sides.iter().copied());
+        self.pass_regions = sides
+            .into_iter()
+            .map(|s| intersections::PassRegion::new(&self.topology, s))
+            .collect();
     }
 
-    /// How many edge-triangle pairs of the two sides of `pass` pass through each other at
-    /// `x`.
-    pub fn pass_crossings(&self, pass: &LayerPass, x: &[Vec3]) -> usize {
-        intersections::crossings_between(&self.topology, x, [&pass.layer, &pass.side])
+    /// How many edge-triangle pairs of the two sides of the `k`-th pass given to
+    /// [`SelfContacts::set_passes`] pass through each other at `x`.
+    pub fn pass_crossings(&self, k: usize, x: &[Vec3]) -> usize {
+        intersections::crossings_between(&self.topology, x, &self.pass_regions[k])
     }
 
     /// The triangles the segment between each of `pairs` passes through at `x`, as

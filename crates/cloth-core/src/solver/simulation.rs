@@ -210,18 +210,11 @@ impl SimulationBuilder {
                 });
             }
         }
-        if let Some(&i) = self
-            .pass_through
-            .iter()
-            .flat_map(|p| &p.members)
-            .find(|&&i| i >= n)
-        {
-            return Err(ParamError::OutOfRange {
-                name: "pass_through",
-                value: i as f64,
-                expected: "particles of the mesh",
-            });
-        }
+        particles_of_cloth(
+            "pass_through",
+            self.pass_through.iter().flat_map(|p| &p.members),
+            n,
+        )?;
         if let Some(a) = self.attachments.iter().find(|a| {
             a.particle >= n
                 || !a.point.iter().all(|c| c.is_finite())
@@ -1000,16 +993,22 @@ impl Simulation {
     }
 
     /// Lets each of `passes` through its layer from now on (see [`LayerPass`]); without
-    /// self-collision they have nothing to pass.
-    pub fn add_layer_passes(&mut self, passes: impl IntoIterator<Item = LayerPass>) {
-        let since = self.steps;
+    /// self-collision they have nothing to pass. A particle that is not the cloth's is
+    /// refused, and no pass is added.
+    pub fn add_layer_passes(
+        &mut self,
+        passes: impl IntoIterator<Item = LayerPass>,
+    ) -> Result<(), ParamError> {
+        let passes: Vec<LayerPass> = passes.into_iter().collect();
+        let all = passes.iter().flat_map(|p| p.layer.iter().chain(&p.side));
+        particles_of_cloth("layer_passes", all, self.x.len())?;
         self.passes.extend(passes.into_iter().map(|pass| LayerPassing {
             pass,
-            since,
             crossed: false,
             ended: None,
         }));
         self.exempt_passes();
+        Ok(())
     }
 
     /// Ends every layer pass still holding: the cloth collides with all of itself again.
@@ -1029,14 +1028,12 @@ impl Simulation {
     /// seam's) passes through now, as (pair, triangle), sorted; triangles near either
     /// particle in the mesh or in the flat cloth are not counted. Empty without
     /// self-collision.
-    pub fn cloth_across(&self, pairs: &[[usize; 2]]) -> Vec<(usize, usize)> {
-        let n = self.x.len();
-        if pairs.iter().flatten().any(|&i| i >= n) {
-            return Vec::new();
-        }
-        self.self_contacts
+    pub fn cloth_across(&self, pairs: &[[usize; 2]]) -> Result<Vec<(usize, usize)>, ParamError> {
+        particles_of_cloth("pairs", pairs.iter().flatten(), self.x.len())?;
+        Ok(self
+            .self_contacts
             .as_ref()
-            .map_or_else(Vec::new, |sc| sc.across_pairs(&self.x, pairs))
+            .map_or_else(Vec::new, |sc| sc.across_pairs(&self.x, pairs)))
     }
 
     /// Gives the self-collision the passes still holding.
@@ -1052,8 +1049,9 @@ impl Simulation {
             return;
         };
         let mut ended = false;
-        for p in self.passes.iter_mut().filter(|p| p.ended.is_none()) {
-            if sc.pass_crossings(&p.pass, &self.x) > 0 {
+        // In the order the self-collision was given them (see `exempt_passes`).
+        for (k, p) in self.passes.iter_mut().filter(|p| p.ended.is_none()).enumerate() {
+            if sc.pass_crossings(k, &self.x) > 0 {
                 p.crossed = true;
             } else if p.crossed {
                 p.ended = Some(self.steps);
@@ -1183,6 +1181,22 @@ fn self_contacts_for(
 }
 
 /// Refuses a state array that is not one finite vector per particle.
+/// Refuses the first of `particles` that is not one of the `n` particles of the cloth.
+fn particles_of_cloth<'a>(
+    name: &'static str,
+    mut particles: impl Iterator<Item = &'a usize>,
+    n: usize,
+) -> Result<(), ParamError> {
+    match particles.find(|&&i| i >= n) {
+        Some(&i) => Err(ParamError::OutOfRange {
+            name,
+            value: i as f64,
+            expected: "particles of the mesh",
+        }),
+        None => Ok(()),
+    }
+}
+
 fn per_particle(name: &'static str, values: &[Vec3], n: usize) -> Result<(), ParamError> {
     if values.len() != n {
         return Err(ParamError::OutOfRange {

@@ -4,7 +4,7 @@
 //! GarmentCode means its hoods, collars and sleeves to hang.
 
 use crate::garment::Garment;
-use cloth_core::{within_rings, Collider, LayerPass, Proximity, Simulation};
+use cloth_core::{Collider, LayerPass, Neighbours, Proximity, Simulation};
 use std::collections::BTreeMap;
 
 /// A layer of cloth found across a seam's pairs, and the panel let through it.
@@ -54,9 +54,8 @@ pub(super) struct Catcher {
     seam_of: Vec<usize>,
     /// The panel of each particle.
     panel_of: Vec<usize>,
-    /// Each particle's neighbours along the mesh's edges, in compressed rows.
-    start: Vec<usize>,
-    neighbours: Vec<usize>,
+    /// Each particle's neighbours along the mesh's edges.
+    neighbours: Neighbours,
     /// What was found, and the simulation's pass for each.
     found: Vec<CaughtLayer>,
     pass_of: Vec<usize>,
@@ -76,29 +75,11 @@ impl Catcher {
                 panel_of[i] = garment.triangle_panel[t];
             }
         }
-        let edges = garment.mesh.edges();
-        let mut start = vec![0; n + 1];
-        for e in edges {
-            start[e[0] + 1] += 1;
-            start[e[1] + 1] += 1;
-        }
-        for i in 0..n {
-            start[i + 1] += start[i];
-        }
-        let mut cursor = start.clone();
-        let mut neighbours = vec![0; start[n]];
-        for &[a, b] in edges {
-            neighbours[cursor[a]] = b;
-            cursor[a] += 1;
-            neighbours[cursor[b]] = a;
-            cursor[b] += 1;
-        }
         Self {
             pairs,
             seam_of,
             panel_of,
-            start,
-            neighbours,
+            neighbours: Neighbours::of(&garment.mesh),
             found: Vec::new(),
             pass_of: Vec::new(),
         }
@@ -122,7 +103,8 @@ impl Catcher {
             })
             .collect();
         let segments: Vec<[usize; 2]> = open.iter().map(|&k| self.pairs[k]).collect();
-        let across = sim.cloth_across(&segments);
+        // The seams' pairs are the garment's particles, and the simulation is of its mesh.
+        let across = sim.cloth_across(&segments).unwrap_or_default();
         if across.is_empty() {
             return 0;
         }
@@ -139,18 +121,29 @@ impl Catcher {
         };
         let triangles = garment.mesh.triangles();
         let mut groups: BTreeMap<(usize, usize), Group> = BTreeMap::new();
+        // The pair last looked at (they come sorted by pair), outer side first.
+        let mut sides: Option<(usize, [usize; 2])> = None;
         for (k, tri) in across {
             let pair = open[k];
-            let [a, b] = self.pairs[pair];
-            let (outer, inner) = if distance(a) > distance(b) { (a, b) } else { (b, a) };
+            let [outer, inner] = match sides {
+                Some((last, sides)) if last == pair => sides,
+                _ => {
+                    let [a, b] = self.pairs[pair];
+                    let by_distance = if distance(a) > distance(b) { [a, b] } else { [b, a] };
+                    sides = Some((pair, by_distance));
+                    by_distance
+                }
+            };
             let layer = garment.triangle_panel[tri];
             let side = match [outer, inner].into_iter().find(|&i| self.panel_of[i] != layer) {
                 Some(side) => side,
                 None => continue,
             };
-            let covered = holding
-                .iter()
-                .any(|p| p.side.contains(&side) && triangles[tri].iter().all(|i| p.layer.contains(i)));
+            // A pass's particles are sorted (see `Neighbours::around`).
+            let covered = holding.iter().any(|p| {
+                p.side.binary_search(&side).is_ok()
+                    && triangles[tri].iter().all(|i| p.layer.binary_search(i).is_ok())
+            });
             if covered {
                 continue;
             }
@@ -166,34 +159,32 @@ impl Catcher {
             group.side.push(side);
             group.pairs += 1;
         }
-        let found = groups.len();
-        let first = sim.layer_passes().len();
-        let mut passes = Vec::new();
-        for (k, ((layer, passing), group)) in groups.into_iter().enumerate() {
-            passes.push(LayerPass {
-                layer: self.grown(group.layer, LAYER_RINGS),
-                side: self.grown(group.side, SIDE_RINGS),
-            });
-            let caught = CaughtLayer {
-                step,
-                seam: garment.seams[group.seam].name.clone(),
-                layer: garment.panel_names[layer].clone(),
-                passing: garment.panel_names[passing].clone(),
-                pairs: group.pairs,
-                passed: None,
-            };
-            self.found.push(caught);
-            self.pass_of.push(first + k);
+        let (first, first_found) = (sim.layer_passes().len(), self.found.len());
+        let (passes, caught): (Vec<LayerPass>, Vec<CaughtLayer>) = groups
+            .into_iter()
+            .map(|((layer, passing), group)| {
+                let pass = LayerPass {
+                    layer: self.neighbours.around(group.layer, LAYER_RINGS),
+                    side: self.neighbours.around(group.side, SIDE_RINGS),
+                };
+                let caught = CaughtLayer {
+                    step,
+                    seam: garment.seams[group.seam].name.clone(),
+                    layer: garment.panel_names[layer].clone(),
+                    passing: garment.panel_names[passing].clone(),
+                    pairs: group.pairs,
+                    passed: None,
+                };
+                (pass, caught)
+            })
+            .unzip();
+        // Grown along the garment's own edges, the passes hold the simulation's particles.
+        if sim.add_layer_passes(passes).is_err() {
+            return 0;
         }
-        sim.add_layer_passes(passes);
-        found
-    }
-
-    /// `particles` and those within `rings` edges of them, sorted.
-    fn grown(&self, particles: Vec<usize>, rings: usize) -> Vec<usize> {
-        within_rings(particles, rings, |i| {
-            self.neighbours[self.start[i]..self.start[i + 1]].iter().copied()
-        })
+        self.pass_of.extend(first..first + caught.len());
+        self.found.extend(caught);
+        self.found.len() - first_found
     }
 
     /// Notes which of the layers found have passed in `sim`, and returns them all.
