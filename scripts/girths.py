@@ -8,13 +8,21 @@ both z-up as the run writes them. At SLICES heights (12 by default) across the c
 prints the cloth's rest length round the slice (from the material coordinates of the
 segments cut), its draped girth and the body's there: each girth the perimeter of the
 convex hull of the slice, as a tape measure goes round, the body's taken only within the
-cloth's width (so a skirt's slice leaves the hands out). A cloth shorter round at rest
-than the body is round must stretch to go on. Meaningful for closed tubes (skirts,
-waistbands, trouser legs); a top's slice across its armholes is not one.
+cloth's reach from the slice's centre (so a skirt's slice leaves the hands out). A cloth
+shorter round at rest than the body is round must stretch to go on. Meaningful where the
+slice is one closed tube (skirts, waistbands, bodices below the arms); not across
+armholes, where a hull spans the gap, nor across two trouser legs, whose rest lengths add
+up under one hull. Needs numpy.
 """
 import sys
 
 import numpy as np
+
+
+def index(text, count):
+    """A face's 1-based index, or a negative one counted back from the last read."""
+    i = int(text)
+    return i - 1 if i > 0 else count + i
 
 
 def read_obj(path):
@@ -28,10 +36,13 @@ def read_obj(path):
             if s[0] == "v":
                 v.append([float(c) for c in s[1:4]])
             elif s[0] == "vt":
-                vt.append([float(c) for c in s[1:3]])
+                vt.append([float(c) for c in (s[1:3] + ["0"])[:2]])
             elif s[0] == "f":
                 corners = [c.split("/") for c in s[1:]]
-                ids = [(int(c[0]) - 1, int(c[1]) - 1 if len(c) > 1 and c[1] else -1) for c in corners]
+                ids = [
+                    (index(c[0], len(v)), index(c[1], len(vt)) if len(c) > 1 and c[1] else -1)
+                    for c in corners
+                ]
                 for k in range(1, len(ids) - 1):
                     tris.append((ids[0], ids[k], ids[k + 1]))
     return np.array(v), np.array(vt) if vt else None, tris
@@ -97,7 +108,8 @@ def main():
         if len(pts) < 3:
             continue
         around, _ = slice_at(body, None, body_tris, z)
-        centre, reach = pts[:, :2].mean(axis=0), 0.5 * np.ptp(pts[:, 0]) + 0.01
+        centre = pts[:, :2].mean(axis=0)
+        reach = np.linalg.norm(pts[:, :2] - centre, axis=1).max() + 0.01
         if len(around):
             around = around[np.linalg.norm(around[:, :2] - centre, axis=1) < reach]
         draped = hull_perimeter(pts[:, :2])

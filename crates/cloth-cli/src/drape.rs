@@ -47,7 +47,7 @@ pub struct DrapeArgs {
     /// folders that hold something else.
     #[arg(long)]
     pub force: bool,
-    /// Patterns draped at once (each uses all cores in its parallel parts).
+    /// Patterns draped at once (the cores shared out among them).
     #[arg(long, default_value_t = 1)]
     pub jobs: usize,
     /// Stop a pattern after this many seconds: its state and report are kept, and it
@@ -176,24 +176,30 @@ fn drape_one(
     entry
 }
 
-/// A thread pool per job, the cores shared out among them (at least one thread each).
-/// Jobs sharing one pool wait on each other: a job's thread blocked in a parallel loop
-/// steals the other job's work, its whole step at times, and finishes its own loop only
-/// when that is done (rand_1_038 drew 6.4 s a draping step beside another job, 1.1 s
-/// alone).
-fn job_pools(jobs: usize) -> Result<Vec<rayon::ThreadPool>, Failure> {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    (0..jobs)
-        .map(|k| {
-            // The cores left over go to the first jobs.
-            let threads = (cores / jobs + usize::from(k < cores % jobs)).max(1);
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .thread_name(move |i| format!("cloth-job{k}-{i}"))
-                .build()
-                .map_err(|e| Failure::run(format!("cannot start the threads of job {k}: {e}")))
-        })
-        .collect()
+/// The cores a batch shares out: `RAYON_NUM_THREADS` when set, as rayon's own pool would
+/// read it, else the machine's.
+fn cores() -> usize {
+    std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|n| n.parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
+/// The threads of one pattern's run by job `slot` while `running` patterns run at once:
+/// the cores shared out among them (the first jobs get any left over; at least one
+/// each), so the last patterns of a batch get the cores the others are done with. Jobs
+/// sharing one pool waited on each other: a job's thread blocked in a parallel loop
+/// steals the other job's work, its whole step at times, and goes on with its own loop
+/// only when that is done.
+fn pattern_pool(slot: usize, running: usize) -> Result<rayon::ThreadPool, String> {
+    let (cores, running) = (cores(), running.max(1));
+    let threads = (cores / running + usize::from(slot % running < cores % running)).max(1);
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(move |i| format!("cloth-job{slot}-{i}"))
+        .build()
+        .map_err(|e| format!("cannot start {threads} threads for its run: {e} (try a smaller --jobs)"))
 }
 
 /// The line said when a pattern is done.
@@ -302,9 +308,8 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
             ));
         }
     };
-    let pools = job_pools(jobs)?;
     std::thread::scope(|scope| {
-        for (slot, pool) in pools.iter().enumerate() {
+        for slot in 0..jobs {
             let (request, args, interrupted) = (&request, &args, &interrupted);
             let (status, next, entries, patterns, bar, say, write, live) =
                 (&status, &next, &entries, &patterns, &bar, &say, &write, &live);
@@ -323,17 +328,20 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
                     };
                     let Some(pattern) = patterns.get(k) else { break };
                     // A bug in one pattern's run must not take the batch down with it.
-                    let entry = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                        pool.install(|| drape_one(pattern, request, args, interrupted, status, slot))
-                    }))
-                    .unwrap_or_else(|_| {
-                        SummaryEntry::refused(
-                            &pattern.name,
-                            &pattern.path,
-                            "internal error: the run panicked".into(),
-                            0.0,
-                        )
-                    });
+                    let entry = match pattern_pool(slot, jobs.min(total - k)) {
+                        Ok(pool) => std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                            pool.install(|| drape_one(pattern, request, args, interrupted, status, slot))
+                        }))
+                        .unwrap_or_else(|_| {
+                            SummaryEntry::refused(
+                                &pattern.name,
+                                &pattern.path,
+                                "internal error: the run panicked".into(),
+                                0.0,
+                            )
+                        }),
+                        Err(e) => SummaryEntry::refused(&pattern.name, &pattern.path, e, 0.0),
+                    };
                     let mut all = entries.lock().unwrap_or_else(|e| e.into_inner());
                     all[k] = Some(entry.clone());
                     let done = all.iter().flatten().count();
@@ -400,32 +408,33 @@ mod tests {
     use super::*;
 
     #[test]
-    fn each_job_gets_its_own_threads_and_the_cores_are_shared_out() {
-        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        for jobs in [1, 2, 3, cores, cores + 2] {
-            let Ok(pools) = job_pools(jobs) else {
-                panic!("no threads for {jobs} jobs");
-            };
-            assert_eq!(pools.len(), jobs);
-            let threads: Vec<usize> = pools.iter().map(|p| p.current_num_threads()).collect();
-            assert!(threads.iter().all(|&t| t >= 1), "{jobs} jobs: {threads:?}");
+    fn the_patterns_running_at_once_share_the_cores_out_each_on_its_own_threads() {
+        let cores = cores();
+        for running in [1, 2, 3, cores, cores + 2] {
+            let threads: Vec<usize> = (0..running)
+                .map(|slot| match pattern_pool(slot, running) {
+                    Ok(pool) => {
+                        // Its parallel loops run only on its own threads.
+                        let names: Vec<String> = pool.install(|| {
+                            use rayon::prelude::*;
+                            (0..64)
+                                .into_par_iter()
+                                .map(|_| std::thread::current().name().unwrap_or("").to_string())
+                                .collect()
+                        });
+                        let own = format!("cloth-job{slot}-");
+                        assert!(names.iter().all(|n| n.starts_with(&own)), "job {slot}: {names:?}");
+                        pool.current_num_threads()
+                    }
+                    Err(e) => panic!("job {slot} of {running}: {e}"),
+                })
+                .collect();
+            assert!(threads.iter().all(|&t| t >= 1), "{running} running: {threads:?}");
             assert_eq!(
                 threads.iter().sum::<usize>(),
-                cores.max(jobs),
-                "{jobs} jobs: {threads:?}"
+                cores.max(running),
+                "{running} running: {threads:?}"
             );
-            // Parallel work started by a job runs on its own pool's threads only.
-            for (k, pool) in pools.iter().enumerate() {
-                let names: Vec<String> = pool.install(|| {
-                    use rayon::prelude::*;
-                    (0..64)
-                        .into_par_iter()
-                        .map(|_| std::thread::current().name().unwrap_or("").to_string())
-                        .collect()
-                });
-                let own = format!("cloth-job{k}-");
-                assert!(names.iter().all(|n| n.starts_with(&own)), "job {k}: {names:?}");
-            }
         }
     }
 }
