@@ -1,7 +1,8 @@
 //! A layer caught between a seam's sides: two panels lying on a block are sewn edge to
 //! edge, and the edge of a third panel lies between them where they meet (as GarmentCode
-//! hangs a hood's edge between the shoulders). The seam closes over it; the side farther
-//! from the block is let through it, and the weld makes no crossing.
+//! hangs a hood's edge between the shoulders). The seam closes over it; the side that
+//! puts it where the rest of it lies is let through it (the farther from the block when
+//! it lies over the seam's panels, the nearer when under), and the weld makes no crossing.
 
 use cloth::collide::{Bodies, Body, TriSurface};
 use cloth::garment::sewing::{sew, SewingSettings, Sewn};
@@ -13,9 +14,9 @@ use std::ops::ControlFlow;
 use std::sync::Arc;
 
 /// `under` flat at z = 0 left of x = 0; `over` 1 cm above, right of x = 1 cm; their facing
-/// edges sewn. The flap lies between, at z = 5 mm, from x = -3 cm to `flap_end` cm: over
-/// `under` and, past x = 1 cm, under `over`.
-fn pattern(with_flap: bool, flap_end: f64) -> Pattern {
+/// edges sewn. The flap lies between, at z = 5 mm, from x = `flap` cm to the second:
+/// over `under` and, past x = 1 cm, under `over`.
+fn pattern(flap: Option<[f64; 2]>) -> Pattern {
     let square = |name: &str| {
         format!(
             r#"
@@ -35,8 +36,8 @@ outline = [
     text += "placement = { translation = [-10, 0, 0] }\n";
     text += &square("over");
     text += "placement = { translation = [1, 0, 1] }\n";
-    if with_flap {
-        let width = flap_end + 3.0;
+    if let Some([flap_start, flap_end]) = flap {
+        let width = flap_end - flap_start;
         text += &format!(
             r#"
 [[panels]]
@@ -47,7 +48,7 @@ outline = [
     {{ start = [{width}, 6], name = "top" }},
     {{ start = [0, 6], name = "left" }},
 ]
-placement = {{ translation = [-3, 2, 0.5] }}
+placement = {{ translation = [{flap_start}, 2, 0.5] }}
 "#
         );
     }
@@ -59,12 +60,12 @@ b = { panel = "over", edge = "left" }
     Pattern::from_toml_str(&text, "caught.toml").unwrap()
 }
 
-fn sew_flat(with_flap: bool, flap_end: f64) -> (Garment, Sewn) {
+fn sew_flat(flap: Option<[f64; 2]>) -> (Garment, Sewn) {
     let block = Body::new("block", TriSurface::cuboid(Vec3::new(0.3, 0.3, 0.05)).unwrap())
         .with_pose(Isometry3::translation(0.0, 0.05, -0.055))
         .unwrap();
     let bodies = Arc::new(Bodies::new(vec![block]));
-    let garment = GarmentBuilder::new(pattern(with_flap, flap_end))
+    let garment = GarmentBuilder::new(pattern(flap))
         .edge_length(0.01)
         .build()
         .unwrap();
@@ -83,8 +84,9 @@ fn sew_flat(with_flap: bool, flap_end: f64) -> (Garment, Sewn) {
 }
 
 #[test]
-fn the_side_farther_from_the_body_is_let_through_a_caught_layer_and_the_weld_crosses_nothing() {
-    let (garment, sewn) = sew_flat(true, 2.5);
+fn the_side_farther_from_the_body_is_let_through_a_layer_lying_over_the_seams_panels() {
+    // Mostly over `under`.
+    let (garment, sewn) = sew_flat(Some([-3.0, 2.5]));
     let caught = &sewn.report.caught;
     assert!(!caught.is_empty(), "nothing found across the seam");
     for c in caught {
@@ -98,43 +100,81 @@ fn the_side_farther_from_the_body_is_let_through_a_caught_layer_and_the_weld_cro
         "{:?}",
         sewn.report.weld_crossings
     );
+    assert_flap_ends(&garment, &sewn, Above::Over);
+}
+
+#[test]
+fn the_side_nearer_the_body_is_let_through_a_layer_lying_under_the_seams_panels() {
+    // Mostly under `over`: its edge caught between the sides, the rest under the seam.
+    let (garment, sewn) = sew_flat(Some([-0.5, 4.5]));
+    let caught = &sewn.report.caught;
+    assert!(!caught.is_empty(), "nothing found across the seam");
+    for c in caught {
+        assert_eq!((c.layer.as_str(), c.passing.as_str()), ("flap", "under"), "{c:?}");
+    }
+    assert!(caught.iter().any(|c| c.passed.is_some()), "{caught:?}");
+    assert_eq!(
+        sewn.report.weld_crossings.found, 0,
+        "{:?}",
+        sewn.report.weld_crossings
+    );
+    assert_flap_ends(&garment, &sewn, Above::Under);
+}
+
+/// Which of the flap and the closed seam ends on top where one lies over the other.
+#[derive(Debug, PartialEq)]
+enum Above {
+    Over,
+    Under,
+}
+
+/// The weld crosses nothing, and the flap ends `above` the closed seam wherever one lies
+/// over the other (not beside it, level with it).
+fn assert_flap_ends(garment: &Garment, sewn: &Sewn, above: Above) {
     let welded = &sewn.welded.mesh;
     let crossings = count_self_intersections(welded, &[], 1e-3, welded.positions());
     assert_eq!(crossings.count, 0, "{crossings:?}");
-    // The flap ends on top: over the closed seam, wherever it lies above it.
     let x = welded.positions();
     let mut joins = vec![0; x.len()];
     for &p in &sewn.welded.particle_of {
         joins[p] += 1;
     }
     let flap = garment.panel_names.iter().position(|n| n == "flap").unwrap();
-    let mut on_flap = vec![false; x.len()];
-    for (t, tri) in welded.triangles().iter().enumerate() {
-        if garment.triangle_panel[t] == flap {
-            tri.iter().for_each(|&i| on_flap[i] = true);
-        }
-    }
     let seam: Vec<usize> = (0..x.len()).filter(|&i| joins[i] > 1).collect();
-    let mut over = 0;
-    for i in (0..x.len()).filter(|&i| on_flap[i]) {
+    // The flap's height over each seam particle it lies over or under: on the flap's
+    // triangle whose plan holds the particle's.
+    let mut overlapping = 0;
+    for (t, tri) in welded.triangles().iter().enumerate() {
+        if garment.triangle_panel[t] != flap {
+            continue;
+        }
+        let [a, b, c] = tri.map(|i| x[i]);
+        let area = (b - a).xy().perp(&(c - a).xy());
         for &s in &seam {
-            if (x[i] - x[s]).xy().norm() < 0.005 {
-                assert!(
-                    x[i].z > x[s].z,
-                    "flap particle {i} at {:?} under seam particle {s} at {:?}",
-                    x[i],
-                    x[s]
-                );
-                over += 1;
+            let p = x[s];
+            let w = [
+                (b - p).xy().perp(&(c - p).xy()) / area,
+                (c - p).xy().perp(&(a - p).xy()) / area,
+                (a - p).xy().perp(&(b - p).xy()) / area,
+            ];
+            if w.iter().any(|&w| w < 0.0) {
+                continue;
             }
+            let height = w[0] * a.z + w[1] * b.z + w[2] * c.z;
+            assert_eq!(
+                height > p.z,
+                above == Above::Over,
+                "the flap at {height} m over seam particle {s} at {p:?}"
+            );
+            overlapping += 1;
         }
     }
-    assert!(over > 0, "the flap lies over no part of the seam");
+    assert!(overlapping > 0, "the flap lies over or under no part of the seam");
 }
 
 #[test]
 fn without_the_flap_nothing_is_caught() {
-    let (_, sewn) = sew_flat(false, 0.0);
+    let (_, sewn) = sew_flat(None);
     assert!(sewn.report.caught.is_empty(), "{:?}", sewn.report.caught);
     assert_eq!(sewn.report.weld_crossings.found, 0);
 }

@@ -1,10 +1,17 @@
 //! Layers caught between a seam's sides while it closes (see [`cloth_core::LayerPass`]).
-//! Of the two sides, the one farther from the bodies is let through the layer: the nearer
-//! one carries it out along with it as the seam closes, so it ends outside the seam, where
-//! GarmentCode means its hoods, collars and sleeves to hang.
+//! A layer is to end on the side of the closed seam where the rest of it lies: a collar
+//! caught at a shoulder by its corner, lying over both shoulders round it, ends outside;
+//! a lining whose edge slipped between the sides ends inside. So the layer's cloth round
+//! the pair (past the part caught) is counted on either side of the seam's panels there,
+//! outward being away from the bodies; lying outside, the side farther from the bodies is
+//! let through it and the nearer one carries it out as the seam closes; inside, the other
+//! way round. While it passes, the layer's cloth still on the wrong side of the side is
+//! moved the way it is to go: the side's edge goes through the layer as the seam closes,
+//! but nothing else takes the rest of the layer round the pair through the side, and the
+//! two stayed crossed along the pass's border to the weld.
 
 use crate::garment::Garment;
-use cloth_core::{Collider, LayerPass, Neighbours, Proximity, Simulation};
+use cloth_core::{Collider, LayerPass, Neighbours, Proximity, Simulation, Vec3};
 use std::collections::BTreeMap;
 
 /// A layer of cloth found across a seam's pairs, and the panel let through it.
@@ -37,6 +44,16 @@ const CLOSED: f64 = 1e-6;
 /// How far from the bodies a particle is looked at, m; beyond, it is as far as any.
 const REACH: f64 = 0.2;
 
+/// The speed at which a layer being let through is moved the way it is to go, m/s (see
+/// [`Catcher::drive`]): a layer's thickness in a sewing step or two.
+const DRIVE_SPEED: f64 = 0.03;
+
+/// The layer's cloth counted for the side it lies on: within `LOOK` of the pair's middle,
+/// and farther than `CAUGHT` from the pair's segment (the part caught between lies on
+/// neither side), m.
+const LOOK: f64 = 0.05;
+const CAUGHT: f64 = 0.015;
+
 /// The cloth found across the pairs of one panel's seams, caught from one other panel:
 /// the particles of the triangles found, the particles of the side let through it, how
 /// many pairs, and the first pair's seam.
@@ -45,6 +62,26 @@ struct Group {
     side: Vec<usize>,
     pairs: usize,
     seam: usize,
+    /// Votes for the layer's going outwards (positive) or inwards.
+    way: f64,
+}
+
+/// Where a caught layer's cloth lies round the pair it was caught in.
+enum Lies {
+    Outside,
+    Inside,
+    Unknown,
+}
+
+/// The distance of `p` from the segment `a b`.
+fn segment_distance(p: &Vec3, a: &Vec3, b: &Vec3) -> f64 {
+    let ab = b - a;
+    let t = if ab.norm_squared() > 0.0 {
+        ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + t * ab)).norm()
 }
 
 /// Finds the layers caught in the seams of a garment being sewn.
@@ -56,9 +93,11 @@ pub(super) struct Catcher {
     panel_of: Vec<usize>,
     /// Each particle's neighbours along the mesh's edges.
     neighbours: Neighbours,
-    /// What was found, and the simulation's pass for each.
+    /// What was found, the simulation's pass for each, and the way its layer is to go:
+    /// 1 outwards (away from the bodies), -1 inwards.
     found: Vec<CaughtLayer>,
     pass_of: Vec<usize>,
+    way: Vec<f64>,
 }
 
 impl Catcher {
@@ -82,6 +121,7 @@ impl Catcher {
             neighbours: Neighbours::of(&garment.mesh),
             found: Vec::new(),
             pass_of: Vec::new(),
+            way: Vec::new(),
         }
     }
 
@@ -119,23 +159,32 @@ impl Catcher {
             Proximity::Near(p) => p.distance,
             Proximity::Far { .. } => f64::INFINITY,
         };
+        let outward = |i: usize| match bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) {
+            Proximity::Near(p) => Some(p.normal),
+            Proximity::Far { .. } => None,
+        };
         let triangles = garment.mesh.triangles();
         let mut groups: BTreeMap<(usize, usize), Group> = BTreeMap::new();
-        // The pair last looked at (they come sorted by pair), outer side first.
-        let mut sides: Option<(usize, [usize; 2])> = None;
+        // The (pair, layer) last looked at (they come sorted by pair), the side to let
+        // through first.
+        let mut sides: Option<((usize, usize), ([usize; 2], f64))> = None;
         for (k, tri) in across {
             let pair = open[k];
-            let [outer, inner] = match sides {
-                Some((last, sides)) if last == pair => sides,
+            let layer = garment.triangle_panel[tri];
+            let (order, way) = match sides {
+                Some((last, chosen)) if last == (pair, layer) => chosen,
                 _ => {
                     let [a, b] = self.pairs[pair];
                     let by_distance = if distance(a) > distance(b) { [a, b] } else { [b, a] };
-                    sides = Some((pair, by_distance));
-                    by_distance
+                    let (order, way) = match self.layer_lies(x, self.pairs[pair], layer, &outward) {
+                        Lies::Inside => ([by_distance[1], by_distance[0]], -1.0),
+                        Lies::Outside | Lies::Unknown => (by_distance, 1.0),
+                    };
+                    sides = Some(((pair, layer), (order, way)));
+                    (order, way)
                 }
             };
-            let layer = garment.triangle_panel[tri];
-            let side = match [outer, inner].into_iter().find(|&i| self.panel_of[i] != layer) {
+            let side = match order.into_iter().find(|&i| self.panel_of[i] != layer) {
                 Some(side) => side,
                 None => continue,
             };
@@ -154,12 +203,15 @@ impl Catcher {
                     side: Vec::new(),
                     pairs: 0,
                     seam: self.seam_of[pair],
+                    way: 0.0,
                 });
             group.layer.extend_from_slice(&triangles[tri]);
             group.side.push(side);
             group.pairs += 1;
+            group.way += way;
         }
         let (first, first_found) = (sim.layer_passes().len(), self.found.len());
+        let ways: Vec<f64> = groups.values().map(|g| g.way.signum()).collect();
         let (passes, caught): (Vec<LayerPass>, Vec<CaughtLayer>) = groups
             .into_iter()
             .map(|((layer, passing), group)| {
@@ -183,8 +235,101 @@ impl Catcher {
             return 0;
         }
         self.pass_of.extend(first..first + caught.len());
+        self.way.extend(ways);
         self.found.extend(caught);
         self.found.len() - first_found
+    }
+
+    /// Which side of the seam's panels the cloth of panel `layer` lies on round `pair`
+    /// at `x`, by count of its particles within [`LOOK`] of the pair's middle and farther
+    /// than [`CAUGHT`] from its segment, each against the nearest particle of the pair's
+    /// panels within [`LOOK`] of it, outward along `outward` there (away from the bodies).
+    fn layer_lies(
+        &self,
+        x: &[Vec3],
+        [a, b]: [usize; 2],
+        layer: usize,
+        outward: &dyn Fn(usize) -> Option<Vec3>,
+    ) -> Lies {
+        let middle = 0.5 * (x[a] + x[b]);
+        let panels = [self.panel_of[a], self.panel_of[b]];
+        let seam_side: Vec<usize> = (0..x.len())
+            .filter(|&i| panels.contains(&self.panel_of[i]) && (x[i] - middle).norm() < 2.0 * LOOK)
+            .collect();
+        let (mut out, mut inside) = (0usize, 0usize);
+        let mut normals: BTreeMap<usize, Option<Vec3>> = BTreeMap::new();
+        for i in (0..x.len()).filter(|&i| self.panel_of[i] == layer && (x[i] - middle).norm() < LOOK) {
+            if segment_distance(&x[i], &x[a], &x[b]) < CAUGHT {
+                continue;
+            }
+            let nearest = seam_side
+                .iter()
+                .map(|&q| (q, (x[q] - x[i]).norm()))
+                .filter(|&(_, d)| d < LOOK)
+                .min_by(|p, q| p.1.total_cmp(&q.1));
+            let Some((q, _)) = nearest else {
+                continue;
+            };
+            let Some(n) = *normals.entry(q).or_insert_with(|| outward(q)) else {
+                continue;
+            };
+            if (x[i] - x[q]).dot(&n) > 0.0 {
+                out += 1;
+            } else {
+                inside += 1;
+            }
+        }
+        match out.cmp(&inside) {
+            std::cmp::Ordering::Greater => Lies::Outside,
+            std::cmp::Ordering::Less => Lies::Inside,
+            std::cmp::Ordering::Equal => Lies::Unknown,
+        }
+    }
+
+    /// Moves the cloth of each layer still being let through in `sim` the way it is to go,
+    /// at [`DRIVE_SPEED`] at least: the side's edge goes through the layer as the seam
+    /// closes, but nothing else takes the rest of the layer round the pair through the
+    /// side (a collar lying over the shoulder beyond the seam's edge), and the pass would
+    /// hold to the weld with the two through each other along its border.
+    pub(super) fn drive(&self, sim: &mut Simulation, bodies: &dyn Collider) {
+        let passes = sim.layer_passes();
+        let (t, x) = (sim.time(), sim.positions());
+        let mut v = sim.velocities().to_vec();
+        let mut moved = false;
+        for (&k, &way) in self.pass_of.iter().zip(&self.way) {
+            let Some(p) = passes.get(k).filter(|p| p.ended.is_none()) else {
+                continue;
+            };
+            for &i in &p.pass.layer {
+                // Only the layer's cloth still on the wrong side of the side's nearest.
+                let nearest = p
+                    .pass
+                    .side
+                    .iter()
+                    .map(|&q| (q, (x[q] - x[i]).norm()))
+                    .filter(|&(_, d)| d < CAUGHT)
+                    .min_by(|a, b| a.1.total_cmp(&b.1));
+                let Some((q, _)) = nearest else {
+                    continue;
+                };
+                let Proximity::Near(near) = bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) else {
+                    continue;
+                };
+                let dir = way * near.normal;
+                if (x[i] - x[q]).dot(&dir) > 0.0 {
+                    continue;
+                }
+                let along = v[i].dot(&dir);
+                if along < DRIVE_SPEED {
+                    v[i] += (DRIVE_SPEED - along) * dir;
+                    moved = true;
+                }
+            }
+        }
+        // The velocities are the simulation's own, one per particle, finite.
+        if moved && sim.set_velocities(&v).is_err() {
+            return;
+        }
     }
 
     /// Notes which of the layers found have passed in `sim`, and returns them all.

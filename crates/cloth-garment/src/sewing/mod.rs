@@ -249,6 +249,7 @@ pub fn sew(
             reach,
             damping: settings.closing_speed.map_or(0.0, |v| force / v),
         })?;
+        catcher.drive(&mut sim, bodies.as_ref());
         let stats = match sim.step() {
             Ok(stats) => stats,
             Err(SimError::Interrupted { .. }) => {
