@@ -66,6 +66,10 @@ struct Group {
     way: f64,
 }
 
+/// A pair's two particles, the one whose side is let through a layer first, and the way
+/// the layer is to go (1 outwards, -1 inwards).
+type Chosen = ([usize; 2], f64);
+
 /// Where a caught layer's cloth lies round the pair it was caught in.
 enum Lies {
     Outside,
@@ -82,6 +86,16 @@ fn segment_distance(p: &Vec3, a: &Vec3, b: &Vec3) -> f64 {
         0.0
     };
     (p - (a + t * ab)).norm()
+}
+
+/// The particle of `among` nearest particle `i` at `x`, if one is within `within` (m).
+fn nearest(x: &[Vec3], among: &[usize], i: usize, within: f64) -> Option<usize> {
+    among
+        .iter()
+        .map(|&q| (q, (x[q] - x[i]).norm()))
+        .filter(|&(_, d)| d < within)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(q, _)| q)
 }
 
 /// Finds the layers caught in the seams of a garment being sewn.
@@ -167,7 +181,7 @@ impl Catcher {
         let mut groups: BTreeMap<(usize, usize), Group> = BTreeMap::new();
         // The (pair, layer) last looked at (they come sorted by pair), the side to let
         // through first.
-        let mut sides: Option<((usize, usize), ([usize; 2], f64))> = None;
+        let mut sides: Option<((usize, usize), Chosen)> = None;
         for (k, tri) in across {
             let pair = open[k];
             let layer = garment.triangle_panel[tri];
@@ -262,12 +276,7 @@ impl Catcher {
             if segment_distance(&x[i], &x[a], &x[b]) < CAUGHT {
                 continue;
             }
-            let nearest = seam_side
-                .iter()
-                .map(|&q| (q, (x[q] - x[i]).norm()))
-                .filter(|&(_, d)| d < LOOK)
-                .min_by(|p, q| p.1.total_cmp(&q.1));
-            let Some((q, _)) = nearest else {
+            let Some(q) = nearest(x, &seam_side, i, LOOK) else {
                 continue;
             };
             let Some(n) = *normals.entry(q).or_insert_with(|| outward(q)) else {
@@ -302,14 +311,7 @@ impl Catcher {
             };
             for &i in &p.pass.layer {
                 // Only the layer's cloth still on the wrong side of the side's nearest.
-                let nearest = p
-                    .pass
-                    .side
-                    .iter()
-                    .map(|&q| (q, (x[q] - x[i]).norm()))
-                    .filter(|&(_, d)| d < CAUGHT)
-                    .min_by(|a, b| a.1.total_cmp(&b.1));
-                let Some((q, _)) = nearest else {
+                let Some(q) = nearest(x, &p.pass.side, i, CAUGHT) else {
                     continue;
                 };
                 let Proximity::Near(near) = bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) else {
@@ -326,9 +328,10 @@ impl Catcher {
                 }
             }
         }
-        // The velocities are the simulation's own, one per particle, finite.
-        if moved && sim.set_velocities(&v).is_err() {
-            return;
+        // The velocities are the simulation's own, one per particle, finite: refused only
+        // were they not, and then the layer is left as it moves.
+        if moved {
+            let _ = sim.set_velocities(&v);
         }
     }
 
