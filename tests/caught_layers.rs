@@ -87,10 +87,23 @@ fn sew_flat(flap: Option<[f64; 2]>) -> (Garment, Sewn) {
 fn the_side_farther_from_the_body_is_let_through_a_layer_lying_over_the_seams_panels() {
     // Mostly over `under`.
     let (garment, sewn) = sew_flat(Some([-3.0, 2.5]));
+    assert_flap_let_through(&garment, &sewn, "over", Above::Over);
+}
+
+#[test]
+fn the_side_nearer_the_body_is_let_through_a_layer_lying_under_the_seams_panels() {
+    // Mostly under `over`: its edge caught between the sides, the rest under the seam.
+    let (garment, sewn) = sew_flat(Some([-0.5, 4.5]));
+    assert_flap_let_through(&garment, &sewn, "under", Above::Under);
+}
+
+/// The flap was found caught in the seam, `passing` let through it until apart, the weld
+/// crossed nothing, and the flap ends `above` the closed seam.
+fn assert_flap_let_through(garment: &Garment, sewn: &Sewn, passing: &str, above: Above) {
     let caught = &sewn.report.caught;
     assert!(!caught.is_empty(), "nothing found across the seam");
     for c in caught {
-        assert_eq!((c.layer.as_str(), c.passing.as_str()), ("flap", "over"), "{c:?}");
+        assert_eq!((c.layer.as_str(), c.passing.as_str()), ("flap", passing), "{c:?}");
         assert!(c.seam.contains("panel 'under'"), "{}", c.seam);
         assert!(c.pairs > 0);
     }
@@ -100,25 +113,7 @@ fn the_side_farther_from_the_body_is_let_through_a_layer_lying_over_the_seams_pa
         "{:?}",
         sewn.report.weld_crossings
     );
-    assert_flap_ends(&garment, &sewn, Above::Over);
-}
-
-#[test]
-fn the_side_nearer_the_body_is_let_through_a_layer_lying_under_the_seams_panels() {
-    // Mostly under `over`: its edge caught between the sides, the rest under the seam.
-    let (garment, sewn) = sew_flat(Some([-0.5, 4.5]));
-    let caught = &sewn.report.caught;
-    assert!(!caught.is_empty(), "nothing found across the seam");
-    for c in caught {
-        assert_eq!((c.layer.as_str(), c.passing.as_str()), ("flap", "under"), "{c:?}");
-    }
-    assert!(caught.iter().any(|c| c.passed.is_some()), "{caught:?}");
-    assert_eq!(
-        sewn.report.weld_crossings.found, 0,
-        "{:?}",
-        sewn.report.weld_crossings
-    );
-    assert_flap_ends(&garment, &sewn, Above::Under);
+    assert_flap_ends(garment, sewn, above);
 }
 
 /// Which of the flap and the closed seam ends on top where one lies over the other.
@@ -150,6 +145,10 @@ fn assert_flap_ends(garment: &Garment, sewn: &Sewn, above: Above) {
         }
         let [a, b, c] = tri.map(|i| x[i]);
         let area = (b - a).xy().perp(&(c - a).xy());
+        // Seen edge-on from above, it lies over nothing.
+        if area.abs() < 1e-12 {
+            continue;
+        }
         for &s in &seam {
             let p = x[s];
             let w = [

@@ -302,6 +302,14 @@ impl Catcher {
     /// hold to the weld with the two through each other along its border.
     pub(super) fn drive(&self, sim: &mut Simulation, bodies: &dyn Collider) {
         let passes = sim.layer_passes();
+        // Called before every sewing step: nothing copied while no pass holds.
+        if !self
+            .pass_of
+            .iter()
+            .any(|&k| passes.get(k).is_some_and(|p| p.ended.is_none()))
+        {
+            return;
+        }
         let (t, x) = (sim.time(), sim.positions());
         let mut v = sim.velocities().to_vec();
         let mut moved = false;
