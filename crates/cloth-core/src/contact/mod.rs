@@ -73,6 +73,9 @@ pub(crate) struct Contacts {
     feature_stiffness: f64,
     /// Inverse masses, zero for pinned particles (they do not yield to a push).
     inv_mass: Vec<f64>,
+    /// The step's end positions before the features' pushes (scratch, kept between
+    /// steps).
+    solved: Vec<Vec3>,
 }
 
 /// What the end-of-step contact passes did.
@@ -111,6 +114,7 @@ impl Contacts {
             feature_hits: Vec::new(),
             feature_stiffness,
             inv_mass,
+            solved: Vec::new(),
         }
     }
 
@@ -177,10 +181,13 @@ impl Contacts {
             .particles
             .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, parallel);
         let particles = &self.particles;
+        self.solved.clear();
+        self.solved.extend_from_slice(x_new);
         let features = feature_contacts::resolve_features(
             &mut self.features,
             triangles,
             x,
+            &self.solved,
             x_new,
             v_new,
             &self.inv_mass,
