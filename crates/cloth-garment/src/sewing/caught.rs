@@ -62,8 +62,6 @@ struct Group {
     side: Vec<usize>,
     pairs: usize,
     seam: usize,
-    /// Votes for the layer's going outwards (positive) or inwards.
-    way: f64,
 }
 
 /// A pair's two particles, the one whose side is let through a layer first, and the way
@@ -96,6 +94,65 @@ fn nearest(x: &[Vec3], among: &[usize], i: usize, within: f64) -> Option<usize> 
         .filter(|&(_, d)| d < within)
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(q, _)| q)
+}
+
+/// The side let through a layer of panel `layer`, and the way the layer is to go, from the
+/// side `chosen` first: that may be the layer's own panel (a panel caught in its own
+/// seam), and then the other side is let through, and the layer goes the other way round
+/// it. `None` if both sides are the layer's.
+fn let_through(([first, second], way): Chosen, panel_of: &[usize], layer: usize) -> Option<(usize, f64)> {
+    match [first, second].map(|i| panel_of[i] != layer) {
+        [true, _] => Some((first, way)),
+        [false, true] => Some((second, -way)),
+        [false, false] => None,
+    }
+}
+
+/// Which side of the seam's panels the cloth of panel `layer` lies on round `pair` at
+/// `x` (each particle's panel in `panel_of`), by count of its particles within [`LOOK`] of
+/// the pair's middle and farther than [`CAUGHT`] from its segment, each against the
+/// nearest particle of the pair's panels within [`LOOK`] of it, outward along `outward`
+/// there (away from the bodies); particles level with theirs count for neither side.
+fn layer_lies(
+    x: &[Vec3],
+    panel_of: &[usize],
+    [a, b]: [usize; 2],
+    layer: usize,
+    outward: &dyn Fn(usize) -> Option<Vec3>,
+) -> Lies {
+    let middle = 0.5 * (x[a] + x[b]);
+    let panels = [panel_of[a], panel_of[b]];
+    // A layer caught in its own panel's seam is counted against the other panel
+    // only: its own particles would be their own nearest, on neither side.
+    let seam_side: Vec<usize> = (0..x.len())
+        .filter(|&i| {
+            panel_of[i] != layer && panels.contains(&panel_of[i]) && (x[i] - middle).norm() < 2.0 * LOOK
+        })
+        .collect();
+    let (mut out, mut inside) = (0usize, 0usize);
+    let mut normals: BTreeMap<usize, Option<Vec3>> = BTreeMap::new();
+    for i in (0..x.len()).filter(|&i| panel_of[i] == layer && (x[i] - middle).norm() < LOOK) {
+        if segment_distance(&x[i], &x[a], &x[b]) < CAUGHT {
+            continue;
+        }
+        let Some(q) = nearest(x, &seam_side, i, LOOK) else {
+            continue;
+        };
+        let Some(n) = *normals.entry(q).or_insert_with(|| outward(q)) else {
+            continue;
+        };
+        let off = (x[i] - x[q]).dot(&n);
+        if off > 0.0 {
+            out += 1;
+        } else if off < 0.0 {
+            inside += 1;
+        }
+    }
+    match out.cmp(&inside) {
+        std::cmp::Ordering::Greater => Lies::Outside,
+        std::cmp::Ordering::Less => Lies::Inside,
+        std::cmp::Ordering::Equal => Lies::Unknown,
+    }
 }
 
 /// Finds the layers caught in the seams of a garment being sewn.
@@ -178,7 +235,8 @@ impl Catcher {
             Proximity::Far { .. } => None,
         };
         let triangles = garment.mesh.triangles();
-        let mut groups: BTreeMap<(usize, usize), Group> = BTreeMap::new();
+        // By layer, panel let through it, and whether the layer goes outwards.
+        let mut groups: BTreeMap<(usize, usize, bool), Group> = BTreeMap::new();
         // The (pair, layer) last looked at (they come sorted by pair), the side to let
         // through first.
         let mut sides: Option<((usize, usize), Chosen)> = None;
@@ -190,7 +248,8 @@ impl Catcher {
                 _ => {
                     let [a, b] = self.pairs[pair];
                     let by_distance = if distance(a) > distance(b) { [a, b] } else { [b, a] };
-                    let (order, way) = match self.layer_lies(x, self.pairs[pair], layer, &outward) {
+                    let (order, way) = match layer_lies(x, &self.panel_of, self.pairs[pair], layer, &outward)
+                    {
                         Lies::Inside => ([by_distance[1], by_distance[0]], -1.0),
                         Lies::Outside | Lies::Unknown => (by_distance, 1.0),
                     };
@@ -198,9 +257,8 @@ impl Catcher {
                     (order, way)
                 }
             };
-            let side = match order.into_iter().find(|&i| self.panel_of[i] != layer) {
-                Some(side) => side,
-                None => continue,
+            let Some((side, way)) = let_through((order, way), &self.panel_of, layer) else {
+                continue;
             };
             // A pass's particles are sorted (see `Neighbours::around`).
             let covered = holding.iter().any(|p| {
@@ -210,25 +268,28 @@ impl Catcher {
             if covered {
                 continue;
             }
+            // A layer let through one panel outwards at one pair and inwards at another
+            // is two passes, each driven its own way.
             let group = groups
-                .entry((layer, self.panel_of[side]))
+                .entry((layer, self.panel_of[side], way > 0.0))
                 .or_insert_with(|| Group {
                     layer: Vec::new(),
                     side: Vec::new(),
                     pairs: 0,
                     seam: self.seam_of[pair],
-                    way: 0.0,
                 });
             group.layer.extend_from_slice(&triangles[tri]);
             group.side.push(side);
             group.pairs += 1;
-            group.way += way;
         }
         let (first, first_found) = (sim.layer_passes().len(), self.found.len());
-        let ways: Vec<f64> = groups.values().map(|g| g.way.signum()).collect();
+        let ways: Vec<f64> = groups
+            .keys()
+            .map(|&(_, _, outwards)| if outwards { 1.0 } else { -1.0 })
+            .collect();
         let (passes, caught): (Vec<LayerPass>, Vec<CaughtLayer>) = groups
             .into_iter()
-            .map(|((layer, passing), group)| {
+            .map(|((layer, passing, _), group)| {
                 let pass = LayerPass {
                     layer: self.neighbours.around(group.layer, LAYER_RINGS),
                     side: self.neighbours.around(group.side, SIDE_RINGS),
@@ -252,47 +313,6 @@ impl Catcher {
         self.way.extend(ways);
         self.found.extend(caught);
         self.found.len() - first_found
-    }
-
-    /// Which side of the seam's panels the cloth of panel `layer` lies on round `pair`
-    /// at `x`, by count of its particles within [`LOOK`] of the pair's middle and farther
-    /// than [`CAUGHT`] from its segment, each against the nearest particle of the pair's
-    /// panels within [`LOOK`] of it, outward along `outward` there (away from the bodies).
-    fn layer_lies(
-        &self,
-        x: &[Vec3],
-        [a, b]: [usize; 2],
-        layer: usize,
-        outward: &dyn Fn(usize) -> Option<Vec3>,
-    ) -> Lies {
-        let middle = 0.5 * (x[a] + x[b]);
-        let panels = [self.panel_of[a], self.panel_of[b]];
-        let seam_side: Vec<usize> = (0..x.len())
-            .filter(|&i| panels.contains(&self.panel_of[i]) && (x[i] - middle).norm() < 2.0 * LOOK)
-            .collect();
-        let (mut out, mut inside) = (0usize, 0usize);
-        let mut normals: BTreeMap<usize, Option<Vec3>> = BTreeMap::new();
-        for i in (0..x.len()).filter(|&i| self.panel_of[i] == layer && (x[i] - middle).norm() < LOOK) {
-            if segment_distance(&x[i], &x[a], &x[b]) < CAUGHT {
-                continue;
-            }
-            let Some(q) = nearest(x, &seam_side, i, LOOK) else {
-                continue;
-            };
-            let Some(n) = *normals.entry(q).or_insert_with(|| outward(q)) else {
-                continue;
-            };
-            if (x[i] - x[q]).dot(&n) > 0.0 {
-                out += 1;
-            } else {
-                inside += 1;
-            }
-        }
-        match out.cmp(&inside) {
-            std::cmp::Ordering::Greater => Lies::Outside,
-            std::cmp::Ordering::Less => Lies::Inside,
-            std::cmp::Ordering::Equal => Lies::Unknown,
-        }
     }
 
     /// Moves the cloth of each layer still being let through in `sim` the way it is to go,
@@ -350,5 +370,69 @@ impl Catcher {
             caught.passed = passes.get(k).and_then(|p| p.ended);
         }
         &self.found
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A seam's pair across x = 0 at z = 0 (particles 0 of panel 0 and 1 of panel 1),
+    /// each panel's cloth beside it at z = 0 (2 of panel 0, 3 of panel 1), and a layer's
+    /// cloth at the heights `layer` (z, m), 2 cm along y from the pair, of panel `panel`.
+    fn seam_with_layer(layer: &[f64], panel: usize) -> (Vec<Vec3>, Vec<usize>) {
+        let mut x = vec![
+            Vec3::new(-0.005, 0.0, 0.0),
+            Vec3::new(0.005, 0.0, 0.0),
+            Vec3::new(-0.005, 0.02, 0.0),
+            Vec3::new(0.005, 0.02, 0.0),
+        ];
+        let mut panel_of = vec![0, 1, 0, 1];
+        for &z in layer {
+            x.push(Vec3::new(0.004, 0.021, z));
+            panel_of.push(panel);
+        }
+        (x, panel_of)
+    }
+
+    const UP: &dyn Fn(usize) -> Option<Vec3> = &|_| Some(Vec3::z());
+
+    #[test]
+    fn a_layer_is_counted_on_the_side_of_the_seams_panels_most_of_its_cloth_lies() {
+        let (x, panel_of) = seam_with_layer(&[0.004, 0.005, -0.003], 2);
+        assert!(matches!(layer_lies(&x, &panel_of, [0, 1], 2, UP), Lies::Outside));
+        let (x, panel_of) = seam_with_layer(&[-0.004, -0.005, 0.003], 2);
+        assert!(matches!(layer_lies(&x, &panel_of, [0, 1], 2, UP), Lies::Inside));
+        // Level with the seam's panels: neither side.
+        let (x, panel_of) = seam_with_layer(&[0.0, 0.0], 2);
+        assert!(matches!(layer_lies(&x, &panel_of, [0, 1], 2, UP), Lies::Unknown));
+        // No bodies near: unknown.
+        let (x, panel_of) = seam_with_layer(&[0.004], 2);
+        assert!(matches!(
+            layer_lies(&x, &panel_of, [0, 1], 2, &|_| None),
+            Lies::Unknown
+        ));
+    }
+
+    #[test]
+    fn a_layer_of_one_of_the_seams_panels_is_counted_against_the_other() {
+        // The layer's cloth is panel 1's: panel 1's own particles beside the pair are not
+        // its nearest (each would be level with itself), panel 0's are.
+        let (x, panel_of) = seam_with_layer(&[0.004, 0.006], 1);
+        assert!(matches!(layer_lies(&x, &panel_of, [0, 1], 1, UP), Lies::Outside));
+        let (x, panel_of) = seam_with_layer(&[-0.004, -0.006], 1);
+        assert!(matches!(layer_lies(&x, &panel_of, [0, 1], 1, UP), Lies::Inside));
+    }
+
+    #[test]
+    fn a_side_of_the_layers_own_panel_hands_the_pass_to_the_other_side_the_other_way() {
+        let panel_of = [0, 1, 2];
+        // The outer side (particle 0, panel 0) first, the layer outwards.
+        assert_eq!(let_through(([0, 1], 1.0), &panel_of, 2), Some((0, 1.0)));
+        // The layer is panel 0's: panel 1 is let through, and the layer goes inwards.
+        assert_eq!(let_through(([0, 1], 1.0), &panel_of, 0), Some((1, -1.0)));
+        assert_eq!(let_through(([1, 0], -1.0), &panel_of, 1), Some((0, 1.0)));
+        // Both sides the layer's: nothing to let through.
+        assert_eq!(let_through(([0, 0], 1.0), &panel_of, 0), None);
     }
 }
