@@ -212,15 +212,15 @@ pub(crate) fn add_penalty(
     energy
 }
 
-/// Pushes back out every cloth triangle that a feature went through during the step (by
-/// no more than the step's motion could carry it); returns how many. `x_solved` is
-/// `x_new` before any push: no particle is pushed farther from it in all than its
-/// triangle moved in the step plus the feature's thickness, which is all a feature the
-/// step carried through the cloth needs to come back out.
+/// Pushes back out every cloth triangle that a feature went through during the step of
+/// length `h` (by no more than the step's motion could carry it, from the outer side of
+/// the triangle at the step's start); returns how many. `x_solved` is `x_new` before any
+/// push.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn resolve_features(
     set: &mut FeatureSet,
     triangles: &[[usize; 3]],
+    h: f64,
     x_start: &[Vec3],
     x_solved: &[Vec3],
     x_new: &mut [Vec3],
@@ -238,10 +238,7 @@ pub(crate) fn resolve_features(
         if !near_body(tri, &p, &gap_bound, max_thickness) {
             continue;
         }
-        // The step's own motion, not the pushes of the triangles before: each push would
-        // otherwise let the next go farther. Between a hand's fingers a cuff's triangles,
-        // each pushed by features the one before had moved it onto, were pushed 528 times
-        // in a step and stretched to 26 times their length (GarmentCode's rand_1_094).
+        // The step's own motion, not the pushes of the triangles before.
         let moved = tri
             .iter()
             .map(|&i| (x_solved[i] - x_start[i]).norm())
@@ -271,16 +268,21 @@ pub(crate) fn resolve_features(
             if denom <= 0.0 {
                 continue;
             }
-            let push = f.thickness - hit.gap;
-            let reach = moved + f.thickness;
-            let too_far = (0..3).any(|c| {
-                let share = w[c] * inv_mass[tri[c]] / denom;
-                let to = x_new[tri[c]] + (push * share) * hit.normal;
-                (to - x_solved[tri[c]]).norm() > reach
-            });
-            if too_far {
+            // A feature the triangle was already beyond when the step started (by more
+            // than the thickness) was not carried through by the step: a push may have
+            // put it there. Pushed out of such features too, a cuff between a hand's
+            // fingers was handed on from one to the next, 528 pushes in a step, and
+            // stretched to 26 times its length (GarmentCode's rand_1_094, which then
+            // diverged).
+            if started_beyond(
+                tri.map(|i| x_start[i]),
+                &hit,
+                hit.point - h * f.velocity,
+                f.thickness,
+            ) {
                 continue;
             }
+            let push = f.thickness - hit.gap;
             let cloth_velocity: Vec3 = (0..3).map(|c| w[c] * v_new[tri[c]]).sum();
             let into = (cloth_velocity - f.velocity).dot(&hit.normal).min(0.0);
             for c in 0..3 {
@@ -295,6 +297,22 @@ pub(crate) fn resolve_features(
         }
     }
     pushed
+}
+
+/// Whether the cloth point of `hit` lay beyond the feature point `was` by more than
+/// `thickness` on the triangle at `start` (a triangle edge-on there says nothing).
+fn started_beyond(start: [Vec3; 3], hit: &FeatureHit, was: Vec3, thickness: f64) -> bool {
+    let cross = (start[1] - start[0]).cross(&(start[2] - start[0]));
+    let Some(normal) = cross.try_normalize(1e-300) else {
+        return false;
+    };
+    let normal = if normal.dot(&hit.normal) < 0.0 {
+        -normal
+    } else {
+        normal
+    };
+    let cloth: Vec3 = (0..3).map(|k| hit.weights[k] * start[k]).sum();
+    normal.dot(&(cloth - was)) < -thickness
 }
 
 /// Whether the triangle's box meets the feature's, grown by `margin`.
@@ -576,6 +594,7 @@ mod tests {
         let n = resolve_features(
             &mut set,
             &tris,
+            0.01,
             &start,
             &solved,
             &mut x,
@@ -594,24 +613,22 @@ mod tests {
     }
 
     #[test]
-    fn a_stack_of_features_does_not_push_a_triangle_past_its_steps_motion() {
-        // The triangle came down 15 cm through a column of corners 1.5 cm apart, each one
-        // up from the last within the thickness of where the push before left it.
+    fn a_stack_of_features_pushes_a_triangle_out_of_those_the_step_carried_it_through_only() {
+        // The triangle came down 15 cm through a column of corners 1.5 cm apart, from
+        // above every one up to z = 0.105; each corner is within the thickness of where
+        // the push before would leave it.
         let tris = [[0, 1, 2]];
         let start = TRI.to_vec();
         let mut x: Vec<Vec3> = TRI.iter().map(|p| p - Vec3::new(0.0, 0.0, 0.15)).collect();
         let solved = x.clone();
         let mut v = vec![Vec3::new(0.0, 0.0, -1.0); 3];
         let mut set = FeatureSet::default();
-        set.update(|out| {
-            for k in 0..60 {
-                let c = Vec3::new(0.3, 0.3, -0.045 + 0.015 * k as f64);
-                out.push(feature(c, c));
-            }
-        });
+        let corner = |k: usize| Vec3::new(0.3, 0.3, -0.045 + 0.015 * k as f64);
+        set.update(|out| out.extend((0..60).map(|k| feature(corner(k), corner(k)))));
         let n = resolve_features(
             &mut set,
             &tris,
+            0.01,
             &start,
             &solved,
             &mut x,
@@ -620,14 +637,23 @@ mod tests {
             |_| 0.0,
             0.01,
         );
-        // Pushed out of the corners the step went through, and no farther than the
-        // step's 15 cm and the 1 cm thickness from where the step left it: without the
-        // bound each corner passed the triangle to the next, over a metre up.
-        assert!(n >= 3, "{n} pushes");
-        for k in 0..3 {
-            let back = (x[k] - solved[k]).norm();
-            assert!(back <= 0.16 + 1e-12, "particle {k} pushed {back} m");
-            assert!(back >= 0.05, "particle {k} pushed only {back} m");
-        }
+        // Out of every corner it went through, the last (z = 0.105, within the thickness
+        // under it at the start) included; not on to the next, which it started under:
+        // each corner handing it on to the next, it went over a metre up.
+        let p = [x[0], x[1], x[2]];
+        let gap = |k: usize| {
+            let f = feature(corner(k), corner(k));
+            feature_under_triangle_deepest(&p, &f).map_or(f64::NAN, |hit| hit.gap)
+        };
+        assert_eq!(n, 11);
+        // At the thickness over the last, to the micrometre the push's tilt of the
+        // triangle (its corners moved by their weights) takes off.
+        assert!((gap(10) - 0.01).abs() < 1e-6, "{}", gap(10));
+        assert!(
+            (0..10).all(|k| gap(k) > 0.01),
+            "{:?}",
+            (0..10).map(gap).collect::<Vec<_>>()
+        );
+        assert!(gap(11) < 0.0, "{}", gap(11));
     }
 }

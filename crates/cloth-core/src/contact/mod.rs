@@ -186,6 +186,7 @@ impl Contacts {
         let features = feature_contacts::resolve_features(
             &mut self.features,
             triangles,
+            h,
             x,
             &self.solved,
             x_new,

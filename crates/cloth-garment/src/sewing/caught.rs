@@ -5,10 +5,12 @@
 //! the pair (past the part caught) is counted on either side of the seam's panels there,
 //! outward being away from the bodies; lying outside, the side farther from the bodies is
 //! let through it and the nearer one carries it out as the seam closes; inside, the other
-//! way round. While it passes, the layer's cloth still on the wrong side of the side is
-//! moved the way it is to go: the side's edge goes through the layer as the seam closes,
-//! but nothing else takes the rest of the layer round the pair through the side, and the
-//! two stayed crossed along the pass's border to the weld.
+//! way round (a layer of one of the seam's own panels, folded over its edge, can only let
+//! the other panel through, and goes whichever way that takes it). While it passes, the
+//! layer's cloth still on the wrong side of the side is moved the way it is to go: the
+//! side's edge goes through the layer as the seam closes, but nothing else takes the rest
+//! of the layer round the pair through the side, and the two stayed crossed along the
+//! pass's border to the weld.
 
 use crate::garment::Garment;
 use cloth_core::{Collider, LayerPass, Neighbours, Proximity, Simulation, Vec3};
@@ -56,12 +58,16 @@ const CAUGHT: f64 = 0.015;
 
 /// The cloth found across the pairs of one panel's seams, caught from one other panel:
 /// the particles of the triangles found, the particles of the side let through it, how
-/// many pairs, and the first pair's seam.
+/// many pairs, the first pair's seam, and the pairs' votes for the way the layer goes
+/// (outwards positive). One pass is driven one way, the majority's (outwards on a tie, the
+/// way a layer went before its side was counted): split by each pair's way, neighbouring
+/// pairs voting differently made two passes over the same cloth driven against each other.
 struct Group {
     layer: Vec<usize>,
     side: Vec<usize>,
     pairs: usize,
     seam: usize,
+    way: f64,
 }
 
 /// A pair's two particles, the one whose side is let through a layer first, and the way
@@ -112,7 +118,9 @@ fn let_through(([first, second], way): Chosen, panel_of: &[usize], layer: usize)
 /// `x` (each particle's panel in `panel_of`), by count of its particles within [`LOOK`] of
 /// the pair's middle and farther than [`CAUGHT`] from its segment, each against the
 /// nearest particle of the pair's panels within [`LOOK`] of it, outward along `outward`
-/// there (away from the bodies); particles level with theirs count for neither side.
+/// there (away from the bodies); particles level with theirs count for neither side. A
+/// layer of one of the pair's panels is all counted against the other panel, its cloth
+/// beside the pair too: where it lies against that panel there is the side it keeps.
 fn layer_lies(
     x: &[Vec3],
     panel_of: &[usize],
@@ -235,8 +243,7 @@ impl Catcher {
             Proximity::Far { .. } => None,
         };
         let triangles = garment.mesh.triangles();
-        // By layer, panel let through it, and whether the layer goes outwards.
-        let mut groups: BTreeMap<(usize, usize, bool), Group> = BTreeMap::new();
+        let mut groups: BTreeMap<(usize, usize), Group> = BTreeMap::new();
         // The (pair, layer) last looked at (they come sorted by pair), the side to let
         // through first.
         let mut sides: Option<((usize, usize), Chosen)> = None;
@@ -268,28 +275,28 @@ impl Catcher {
             if covered {
                 continue;
             }
-            // A layer let through one panel outwards at one pair and inwards at another
-            // is two passes, each driven its own way.
             let group = groups
-                .entry((layer, self.panel_of[side], way > 0.0))
+                .entry((layer, self.panel_of[side]))
                 .or_insert_with(|| Group {
                     layer: Vec::new(),
                     side: Vec::new(),
                     pairs: 0,
                     seam: self.seam_of[pair],
+                    way: 0.0,
                 });
             group.layer.extend_from_slice(&triangles[tri]);
             group.side.push(side);
             group.pairs += 1;
+            group.way += way;
         }
         let (first, first_found) = (sim.layer_passes().len(), self.found.len());
         let ways: Vec<f64> = groups
-            .keys()
-            .map(|&(_, _, outwards)| if outwards { 1.0 } else { -1.0 })
+            .values()
+            .map(|g| if g.way >= 0.0 { 1.0 } else { -1.0 })
             .collect();
         let (passes, caught): (Vec<LayerPass>, Vec<CaughtLayer>) = groups
             .into_iter()
-            .map(|((layer, passing, _), group)| {
+            .map(|((layer, passing), group)| {
                 let pass = LayerPass {
                     layer: self.neighbours.around(group.layer, LAYER_RINGS),
                     side: self.neighbours.around(group.side, SIDE_RINGS),
