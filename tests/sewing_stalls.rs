@@ -4,7 +4,7 @@
 
 use cloth::collide::{Bodies, Body, TriSurface};
 use cloth::garment::sewing::{sew, SewingSettings, Sewn, FORCED_WELD};
-use cloth::garment::{GarmentBuilder, GarmentError, Pattern};
+use cloth::garment::{GarmentBuilder, GarmentError, HeldOpen, Pattern};
 use cloth::presets::FabricLibrary;
 use cloth::Interrupt;
 use std::ops::ControlFlow;
@@ -114,6 +114,7 @@ fn a_tube_far_too_tight_fails_naming_the_seam() {
             gap_mm,
             pull_factor,
             weld_mm,
+            held_by,
             ..
         }) => {
             assert!(
@@ -122,6 +123,25 @@ fn a_tube_far_too_tight_fails_naming_the_seam() {
             );
             assert!(gap_mm > weld_mm, "{gap_mm} {weld_mm}");
             assert_eq!(pull_factor, 1024.0);
+            // 14 mm apart over a post 6 cm round: the line between them clears it.
+            assert_eq!(held_by, HeldOpen::Nothing, "{gap_mm}");
+        }
+        other => panic!("{:?}", other.map(|s| s.report)),
+    }
+}
+
+#[test]
+fn a_tube_half_the_posts_girth_fails_saying_the_post_lies_between_its_sides() {
+    // Centimetres open across the post: the line between the widest pair's sides runs
+    // through it, and the failure says the garment is too small to go round it.
+    match sew_tube(0.5) {
+        Err(e @ GarmentError::Stalled { .. }) => {
+            let GarmentError::Stalled { gap_mm, held_by, .. } = &e else {
+                unreachable!()
+            };
+            assert!(*gap_mm > 40.0, "{gap_mm}");
+            assert_eq!(*held_by, HeldOpen::Body);
+            assert!(e.to_string().contains("the body lies between its sides"), "{e}");
         }
         other => panic!("{:?}", other.map(|s| s.report)),
     }

@@ -17,7 +17,7 @@ pub mod meshing;
 pub mod pattern;
 pub mod sewing;
 
-pub use garment::{Garment, GarmentBuilder, GarmentError, Layers, PlacementWarning, Touching};
+pub use garment::{Garment, GarmentBuilder, GarmentError, HeldOpen, Layers, PlacementWarning, Touching};
 pub use pattern::{
     BodyPart, Curve, Edge, Gather, Panel, Pattern, PatternError, Placement, Seam, SeamOrientation, SeamSide,
     Wrap,

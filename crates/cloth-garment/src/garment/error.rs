@@ -58,8 +58,7 @@ pub enum GarmentError {
     /// The seams stopped closing with the pull at its strongest, too far apart to weld.
     #[error(
         "the seams stopped closing at step {steps}: {seam} is still {gap_mm:.1} mm apart with the \
-         pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm): the \
-         garment is tighter there than the body it is sewn round, or caught on it"
+         pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm); {held_by}"
     )]
     Stalled {
         steps: u64,
@@ -67,6 +66,8 @@ pub enum GarmentError {
         gap_mm: f64,
         pull_factor: f64,
         weld_mm: f64,
+        /// What lies between the sides of its widest pair.
+        held_by: HeldOpen,
     },
     /// The observer asked to stop (a user's interrupt, say).
     #[error("{stage} stopped at step {steps}")]
@@ -77,4 +78,37 @@ pub enum GarmentError {
         #[source]
         source: SimError,
     },
+}
+
+/// What lies on the straight line between the two sides of a seam's widest pair when it
+/// stopped closing: what the seam would have to go round or through.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum HeldOpen {
+    /// Cloth of these panels (named, each once): a layer the seam closed on.
+    Cloth(Vec<String>),
+    /// A body: the cloth between the sides is too short to go round it.
+    Body,
+    /// Nothing: the cloth round them holds the sides apart (too small for the body it goes
+    /// round, or held by its own contact elsewhere, as godets touching at their corners).
+    Nothing,
+}
+
+impl std::fmt::Display for HeldOpen {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Cloth(panels) => {
+                let names: Vec<String> = panels.iter().map(|p| format!("'{p}'")).collect();
+                write!(f, "cloth of panel {} lies between its sides", names.join(", "))
+            }
+            Self::Body => write!(
+                f,
+                "the body lies between its sides: the garment is too small there to go round it"
+            ),
+            Self::Nothing => write!(
+                f,
+                "nothing lies between its sides: the cloth round them holds them apart (too small \
+                 for the body there, or held by its own contact elsewhere)"
+            ),
+        }
+    }
 }

@@ -9,7 +9,7 @@ mod size;
 mod touching;
 mod weld;
 
-pub use error::GarmentError;
+pub use error::{GarmentError, HeldOpen};
 pub use layers::Layers;
 pub use placement_check::PlacementWarning;
 pub use size::{triangles_in, DEFAULT_MAX_TRIANGLES};

@@ -9,7 +9,7 @@ pub use caught::CaughtLayer;
 pub use settings::{DrapeSettings, SewingSettings};
 pub use weld_crossings::WeldCrossings;
 
-use crate::garment::{Garment, GarmentError, Welded};
+use crate::garment::{Garment, GarmentError, HeldOpen, Welded};
 use crate::pattern::BodyPart;
 use caught::Catcher;
 use cloth_core::{
@@ -232,6 +232,7 @@ pub fn sew(
                         gap_mm: 1e3 * gap,
                         pull_factor: pull_level.boost,
                         weld_mm: 1e3 * weld,
+                        held_by: held_open(garment, &sim, bodies.as_ref(), seam),
                     });
                 }
                 stalls.push(stall_at(steps, seam, gap, pull_level.boost, true));
@@ -343,6 +344,35 @@ pub fn sew(
         },
         bending_calibration: sim.bending_calibration().to_vec(),
     })
+}
+
+/// What lies between the sides of the widest pair of `seam` in `sim`: cloth across it
+/// (the self-collision's test, near particles left out), else a body it passes through.
+fn held_open(garment: &Garment, sim: &Simulation, bodies: &dyn Collider, seam: usize) -> HeldOpen {
+    let x = sim.positions();
+    let widest = garment.seams[seam]
+        .pairs
+        .iter()
+        .copied()
+        .max_by(|p, q| (x[p[0]] - x[p[1]]).norm().total_cmp(&(x[q[0]] - x[q[1]]).norm()));
+    let Some([a, b]) = widest else {
+        return HeldOpen::Nothing;
+    };
+    // The pair is the garment's, and the simulation is of its mesh.
+    let across = sim.cloth_across(&[[a, b]]).unwrap_or_default();
+    let mut panels: Vec<String> = across
+        .iter()
+        .map(|&(_, t)| garment.panel_names[garment.triangle_panel[t]].clone())
+        .collect();
+    panels.sort();
+    panels.dedup();
+    if !panels.is_empty() {
+        HeldOpen::Cloth(panels)
+    } else if bodies.segment_crossings(sim.time(), &x[a], &x[b]) > 0 {
+        HeldOpen::Body
+    } else {
+        HeldOpen::Nothing
+    }
 }
 
 /// The pieces passing the body's thin parts while sewn: the panels dressing the legs for
