@@ -181,8 +181,11 @@ impl Contacts {
             .particles
             .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, parallel);
         let particles = &self.particles;
+        // Only the features' pushes need the positions before them.
         self.solved.clear();
-        self.solved.extend_from_slice(x_new);
+        if !self.features.features.is_empty() {
+            self.solved.extend_from_slice(x_new);
+        }
         let features = feature_contacts::resolve_features(
             &mut self.features,
             triangles,

@@ -306,16 +306,23 @@ impl Garment {
     /// The seam with the widest gap at `positions`, and that gap, m (checked every
     /// sewing step, so it allocates nothing).
     pub fn widest_gap(&self, positions: &[Vec3]) -> (usize, f64) {
+        let (seam, _, gap) = self.widest_pair(positions);
+        (seam, gap)
+    }
+
+    /// The pair of particles farthest apart at `positions`, its seam and its gap, m (seam
+    /// 0 and no pair, gap 0, for a garment without seams).
+    pub fn widest_pair(&self, positions: &[Vec3]) -> (usize, Option<[usize; 2]>, f64) {
         // Compared squared: one square root per call, not per pair.
-        let mut widest = (0, 0.0);
+        let mut widest = (0, None, 0.0);
         for (s, seam) in self.seams.iter().enumerate() {
             for &[a, b] in &seam.pairs {
                 let gap2 = (positions[a] - positions[b]).norm_squared();
-                if gap2 > widest.1 {
-                    widest = (s, gap2);
+                if widest.1.is_none() || gap2 > widest.2 {
+                    widest = (s, Some([a, b]), gap2);
                 }
             }
         }
-        (widest.0, widest.1.sqrt())
+        (widest.0, widest.1, widest.2.sqrt())
     }
 }

@@ -177,6 +177,8 @@ pub(super) struct Catcher {
     found: Vec<CaughtLayer>,
     pass_of: Vec<usize>,
     way: Vec<f64>,
+    /// The simulation's velocities as the drive changes them (scratch, kept between steps).
+    velocities: Vec<Vec3>,
 }
 
 impl Catcher {
@@ -201,6 +203,7 @@ impl Catcher {
             found: Vec::new(),
             pass_of: Vec::new(),
             way: Vec::new(),
+            velocities: Vec::new(),
         }
     }
 
@@ -234,14 +237,12 @@ impl Catcher {
             .map(|p| &p.pass)
             .collect();
         let t = sim.time();
-        let distance = |i: usize| match bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) {
-            Proximity::Near(p) => p.distance,
-            Proximity::Far { .. } => f64::INFINITY,
-        };
-        let outward = |i: usize| match bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) {
-            Proximity::Near(p) => Some(p.normal),
+        let near = |i: usize| match bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) {
+            Proximity::Near(p) => Some(p),
             Proximity::Far { .. } => None,
         };
+        let distance = |i: usize| near(i).map_or(f64::INFINITY, |p| p.distance);
+        let outward = |i: usize| near(i).map(|p| p.normal);
         let triangles = garment.mesh.triangles();
         let mut groups: BTreeMap<(usize, usize), Group> = BTreeMap::new();
         // The (pair, layer) last looked at (they come sorted by pair), the side to let
@@ -327,7 +328,7 @@ impl Catcher {
     /// closes, but nothing else takes the rest of the layer round the pair through the
     /// side (a collar lying over the shoulder beyond the seam's edge), and the pass would
     /// hold to the weld with the two through each other along its border.
-    pub(super) fn drive(&self, sim: &mut Simulation, bodies: &dyn Collider) {
+    pub(super) fn drive(&mut self, sim: &mut Simulation, bodies: &dyn Collider) {
         let passes = sim.layer_passes();
         // Called before every sewing step: nothing copied while no pass holds.
         if !self
@@ -338,7 +339,9 @@ impl Catcher {
             return;
         }
         let (t, x) = (sim.time(), sim.positions());
-        let mut v = sim.velocities().to_vec();
+        let v = &mut self.velocities;
+        v.clear();
+        v.extend_from_slice(sim.velocities());
         let mut moved = false;
         for (&k, &way) in self.pass_of.iter().zip(&self.way) {
             let Some(p) = passes.get(k).filter(|p| p.ended.is_none()) else {
@@ -366,7 +369,7 @@ impl Catcher {
         // The velocities are the simulation's own, one per particle, finite: refused only
         // were they not, and then the layer is left as it moves.
         if moved {
-            let _ = sim.set_velocities(&v);
+            let _ = sim.set_velocities(v);
         }
     }
 

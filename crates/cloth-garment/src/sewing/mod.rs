@@ -232,7 +232,7 @@ pub fn sew(
                         gap_mm: 1e3 * gap,
                         pull_factor: pull_level.boost,
                         weld_mm: 1e3 * weld,
-                        held_by: held_open(garment, &sim, bodies.as_ref(), seam),
+                        held_by: held_open(garment, &sim, bodies.as_ref()),
                     });
                 }
                 stalls.push(stall_at(steps, seam, gap, pull_level.boost, true));
@@ -346,16 +346,11 @@ pub fn sew(
     })
 }
 
-/// What lies between the sides of the widest pair of `seam` in `sim`: cloth across it
-/// (the self-collision's test, near particles left out), else a body it passes through.
-fn held_open(garment: &Garment, sim: &Simulation, bodies: &dyn Collider, seam: usize) -> HeldOpen {
+/// What lies between the sides of the widest pair in `sim`: cloth across it (the
+/// self-collision's test, near particles left out), else a body it passes through.
+fn held_open(garment: &Garment, sim: &Simulation, bodies: &dyn Collider) -> HeldOpen {
     let x = sim.positions();
-    let widest = garment.seams[seam]
-        .pairs
-        .iter()
-        .copied()
-        .max_by(|p, q| (x[p[0]] - x[p[1]]).norm().total_cmp(&(x[q[0]] - x[q[1]]).norm()));
-    let Some([a, b]) = widest else {
+    let (_, Some([a, b]), _) = garment.widest_pair(x) else {
         return HeldOpen::Nothing;
     };
     // The pair is the garment's, and the simulation is of its mesh.
