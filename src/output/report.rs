@@ -1,5 +1,6 @@
 //! report.json and report.md: the same figures, for programs and for people.
 
+use crate::garment::sewing::StallThen;
 use crate::obj::write_atomically;
 use crate::scene_file::{RunOutcome, RunReport};
 use std::io::Write;
@@ -100,10 +101,15 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
              | step | widest seam | gap, mm | then |\n|---|---|---|---|"
         )?;
         for s in &report.seam_stalls {
-            let then = if s.welded {
-                format!("welded where they stood (pull at {} times full)", s.pull_factor)
-            } else {
-                format!("pull at {} times full from then on", s.pull_factor)
+            let then = match s.then {
+                StallThen::Pulled => format!("pull at {} times full from then on", s.pull_factor),
+                StallThen::Welded => {
+                    format!("welded where they stood (pull at {} times full)", s.pull_factor)
+                }
+                StallThen::Zipped => format!(
+                    "nothing between the open pairs' sides: drawn together and welded (pull at {} times full)",
+                    s.pull_factor
+                ),
             };
             writeln!(out, "| {} | {} | {:.2} | {then} |", s.step, s.seam, 1e3 * s.gap)?;
         }

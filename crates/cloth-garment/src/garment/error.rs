@@ -55,7 +55,9 @@ pub enum GarmentError {
         gap_mm: f64,
         tolerance_mm: f64,
     },
-    /// The seams stopped closing with the pull at its strongest, too far apart to weld.
+    /// The seams stopped closing with the pull at its strongest, too far apart to weld
+    /// where they stand, and too far to zip shut or with a body or cloth between the
+    /// sides of their open pairs.
     #[error(
         "the seams stopped closing at step {steps}: {seam} is still {gap_mm:.1} mm apart with the \
          pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm); {held_by}"
@@ -66,7 +68,7 @@ pub enum GarmentError {
         gap_mm: f64,
         pull_factor: f64,
         weld_mm: f64,
-        /// What lies between the sides of its widest pair.
+        /// What lies between the sides of the open pairs.
         held_by: HeldOpen,
     },
     /// The observer asked to stop (a user's interrupt, say).
@@ -80,8 +82,8 @@ pub enum GarmentError {
     },
 }
 
-/// What lies on the straight line between the two sides of a seam's widest pair when it
-/// stopped closing: what the seam would have to go round or through.
+/// What lies on the straight lines between the two sides of the seams' open pairs when
+/// they stopped closing: what the seams would have to go round or through.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum HeldOpen {
     /// Cloth of these panels (named, each once): a layer the seam closed on.
@@ -89,7 +91,8 @@ pub enum HeldOpen {
     /// A body: the cloth between the sides is too short to go round it.
     Body,
     /// Nothing: the cloth round them holds the sides apart (too small for the body it goes
-    /// round, or held by its own contact elsewhere, as godets touching at their corners).
+    /// round, or held by its own contact elsewhere, as godets touching at their corners);
+    /// such seams are zipped shut when near enough.
     Nothing,
 }
 

@@ -8,14 +8,18 @@
 //! bodies, until nothing crosses or it has moved a cell. (Moved the least way across, to
 //! the nearer side, it made more crossings than it cleared: 17 to 60 on rand_1_034.)
 
+use super::cut_off;
 use crate::garment::Welded;
-use cloth_core::{self_intersecting_pairs, Collider, Proximity, Vec3};
+use cloth_core::{self_intersecting_pairs, Collider, Neighbours, Proximity, Vec3};
 
-/// What clearing the weld's crossings found and left: intersecting edge-triangle pairs.
+/// What clearing the weld's crossings found and left (intersecting edge-triangle pairs),
+/// and how many parts of the cloth cut off by them were moved through as one (see
+/// `cut_off`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub struct WeldCrossings {
     pub found: usize,
     pub left: usize,
+    pub regions_moved: usize,
 }
 
 /// Each round moves the cloth between this far, m.
@@ -25,14 +29,17 @@ const STEP: f64 = 5e-4;
 /// along the normal of the triangle crossed.
 const REACH: f64 = 0.2;
 
-/// Clears the crossings of `welded` at time `t` of `bodies`, moving no particle by more
+/// Clears the crossings of `welded` (its panels the charts of `charts`, the unwelded
+/// mesh's neighbours) at time `t` of `bodies`, moving no particle by more
 /// than `most` (m); pairs within `rest_radius` in the flat cloth are exempt, as the
-/// self-collision exempts them. Of an edge and a triangle through each other, the one
+/// self-collision exempts them. The parts of the cloth the crossings cut off are moved
+/// through first (see `cut_off`); then, of an edge and a triangle through each other, the one
 /// with more particles that no seam joins is moved out (the cloth caught between a seam's
 /// sides, not the seam); of two alike, the one farther out. Each round moves it a
 /// [`STEP`] out, away from the bodies; the round with the fewest crossings is kept.
 pub(super) fn clear(
     welded: &mut Welded,
+    charts: &Neighbours,
     bodies: &dyn Collider,
     t: f64,
     rest_radius: f64,
@@ -45,16 +52,19 @@ pub(super) fn clear(
     }
     let free = |i: usize| members[i] <= 1;
     let rounds = (most / STEP).ceil() as usize;
-    let mut report = WeldCrossings::default();
+    let mut report = WeldCrossings {
+        found: self_intersecting_pairs(&welded.mesh, &[], rest_radius, welded.mesh.positions()).len(),
+        ..WeldCrossings::default()
+    };
+    if report.found > 0 {
+        report.regions_moved = cut_off::clear(welded, charts, rest_radius, most);
+    }
     let mut moved = vec![false; n];
     // The fewest crossings yet, and where: moving cloth out may cross other cloth.
     let mut best: Option<(usize, Vec<Vec3>)> = None;
     for round in 0..=rounds {
         let x = welded.mesh.positions().to_vec();
         let pairs = self_intersecting_pairs(&welded.mesh, &[], rest_radius, &x);
-        if round == 0 {
-            report.found = pairs.len();
-        }
         if best.as_ref().is_none_or(|(count, _)| pairs.len() < *count) {
             best = Some((pairs.len(), x.clone()));
         }
@@ -112,6 +122,14 @@ mod tests {
     use cloth_core::ClothMesh;
     use nalgebra::Vector2;
 
+    /// The neighbours of the unwelded mesh of `triangles`, its vertex `i` at
+    /// `x[particle_of[i]]`.
+    fn charts(x: &[Vec3], particle_of: &[usize], triangles: Vec<[usize; 3]>) -> Neighbours {
+        let positions: Vec<Vec3> = particle_of.iter().map(|&k| x[k]).collect();
+        let uv = positions.iter().map(|p| Vector2::new(p.x + p.z, p.y)).collect();
+        Neighbours::of(&ClothMesh::new(positions, uv, triangles).unwrap())
+    }
+
     #[test]
     fn cloth_the_weld_left_through_a_seam_is_moved_out_off_it() {
         // A welded strip lying on a box (its top at z = 0.1), every particle joining two
@@ -135,9 +153,15 @@ mod tests {
             "box",
             TriSurface::cuboid(Vec3::new(0.5, 0.5, 0.1)).unwrap(),
         )]);
-        let report = clear(&mut welded, &bodies, 0.0, 0.0, 0.015);
+        // Unwelded: the strip twice (two panels seamed all round), then the triangle.
+        let charts = charts(
+            &positions,
+            &welded.particle_of,
+            vec![[0, 2, 4], [2, 6, 4], [1, 3, 5], [3, 7, 5], [8, 9, 10]],
+        );
+        let report = clear(&mut welded, &charts, &bodies, 0.0, 0.0, 0.015);
         // The strip's edge through the triangle, and the triangle's edge through the strip.
-        assert_eq!(report, WeldCrossings { found: 2, left: 0 });
+        assert_eq!((report.found, report.left), (2, 0));
         let x = welded.mesh.positions();
         for i in 0..4 {
             assert_eq!(x[i], positions[i], "the seam stays");
@@ -179,14 +203,23 @@ mod tests {
             "box",
             TriSurface::cuboid(Vec3::new(0.5, 0.5, 0.1)).unwrap(),
         )]);
-        let report = clear(&mut welded, &bodies, 0.0, 0.0, 0.001);
-        assert_eq!(
-            report,
-            WeldCrossings {
-                found: before,
-                left: before
-            }
+        let charts = charts(
+            &positions,
+            &welded.particle_of,
+            vec![
+                [0, 2, 4],
+                [2, 6, 4],
+                [1, 3, 5],
+                [3, 7, 5],
+                [8, 9, 10],
+                [11, 13, 15],
+                [13, 17, 15],
+                [12, 14, 16],
+                [14, 18, 16],
+            ],
         );
+        let report = clear(&mut welded, &charts, &bodies, 0.0, 0.0, 0.001);
+        assert_eq!((report.found, report.left), (before, before));
         assert!(before > 0);
         assert_eq!(welded.mesh.positions(), &positions[..], "nothing moved");
     }
