@@ -31,7 +31,7 @@ pub use fabric::{
     BendingLaw, BendingRigidity, Fabric, KesConversion, KesDirection, KesMeasurement, SourceCoefficients,
     TensileLaw, UnusedKes,
 };
-pub use mesh::{within_rings, ClothMesh, GridBuilder, GridDiagonals, GridShape, Neighbours};
+pub use mesh::{components, within_rings, ClothMesh, GridBuilder, GridDiagonals, GridShape, Neighbours};
 pub use metrics::{GridStretch, StrainReport};
 pub use self_contact::{
     closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections, LayerPass,

@@ -80,24 +80,5 @@ pub(super) fn orient(triangles: &mut [[u32; 3]], sides: &[Side]) -> Orientation 
 /// of first triangle.
 pub(super) fn components(triangle_count: usize, sides: &[Side]) -> Vec<usize> {
     let around = neighbours(triangle_count, sides);
-    let mut label = vec![usize::MAX; triangle_count];
-    let mut count = 0;
-    let mut stack = Vec::new();
-    for seed in 0..triangle_count {
-        if label[seed] != usize::MAX {
-            continue;
-        }
-        label[seed] = count;
-        stack.push(seed);
-        while let Some(t) = stack.pop() {
-            for &(n, _) in &around[t] {
-                if label[n as usize] == usize::MAX {
-                    label[n as usize] = count;
-                    stack.push(n as usize);
-                }
-            }
-        }
-        count += 1;
-    }
-    label
+    cloth_core::components(triangle_count, |t| around[t].iter().map(|&(n, _)| n as usize))
 }

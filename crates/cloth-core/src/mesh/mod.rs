@@ -7,5 +7,5 @@ mod topology;
 
 pub use cloth_mesh::{ClothMesh, GridShape};
 pub use grid::{GridBuilder, GridDiagonals};
-pub use rings::{within_rings, Neighbours};
+pub use rings::{components, within_rings, Neighbours};
 pub use topology::Hinge;

@@ -1,4 +1,4 @@
-//! What lies within a few edges of a set of vertices.
+//! What lies within a few edges of a set of vertices, and what is joined to what.
 
 use super::ClothMesh;
 
@@ -70,6 +70,34 @@ where
     seeds
 }
 
+/// Labels the items `0..n` by the connected part of the graph whose steps `neighbours`
+/// gives, parts numbered from 0 in order of their first item.
+pub fn components<I>(n: usize, neighbours: impl Fn(usize) -> I) -> Vec<usize>
+where
+    I: IntoIterator<Item = usize>,
+{
+    let mut label = vec![usize::MAX; n];
+    let mut count = 0;
+    let mut stack = Vec::new();
+    for seed in 0..n {
+        if label[seed] != usize::MAX {
+            continue;
+        }
+        label[seed] = count;
+        stack.push(seed);
+        while let Some(i) = stack.pop() {
+            for j in neighbours(i) {
+                if label[j] == usize::MAX {
+                    label[j] = count;
+                    stack.push(j);
+                }
+            }
+        }
+        count += 1;
+    }
+    label
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -82,6 +110,17 @@ mod tests {
         assert_eq!(within_rings(vec![5], 2, neighbours), vec![3, 4, 5, 6, 7]);
         assert_eq!(within_rings(vec![0, 9, 0], 1, neighbours), vec![0, 1, 8, 9]);
         assert_eq!(within_rings(vec![4], 20, neighbours), (0..10).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn parts_are_labelled_in_order_of_their_first_item() {
+        // 0-2, 1-3-4, and 5 alone.
+        let links: [&[usize]; 6] = [&[2], &[3], &[0], &[1, 4], &[3], &[]];
+        assert_eq!(
+            components(6, |i| links[i].iter().copied()),
+            vec![0, 1, 0, 1, 1, 2]
+        );
+        assert!(components(0, |_| std::iter::empty()).is_empty());
     }
 
     #[test]

@@ -10,7 +10,7 @@
 //! shoulder's sides, moved out, drags its neighbours through.
 
 use crate::garment::Welded;
-use cloth_core::{self_intersecting_pairs, ClothMesh, Neighbours, Vec3};
+use cloth_core::{components, self_intersecting_pairs, ClothMesh, Neighbours, Vec3};
 
 /// The most particles a region cut off may have: a corner or a flap, not a panel.
 const MOST_PARTICLES: usize = 400;
@@ -48,14 +48,13 @@ pub(super) fn regions(welded: &Welded, charts: &Neighbours, pairs: &[(usize, usi
         cut.binary_search(&[a.min(b), a.max(b)]).is_ok()
     };
     // Whole panels first, then the parts of each the cut edges leave joined.
-    let panel = label(n, |i| charts.of_vertex(i).to_vec());
-    let part = label(n, |i| {
+    let panel = components(n, |i| charts.of_vertex(i).iter().copied());
+    let part = components(n, |i| {
         charts
             .of_vertex(i)
             .iter()
             .copied()
-            .filter(|&j| !is_cut(i, j))
-            .collect()
+            .filter(move |&j| !is_cut(i, j))
     });
     let parts = 1 + part.iter().copied().max().unwrap_or(0);
     let mut size = vec![0usize; parts];
@@ -116,31 +115,6 @@ pub(super) fn regions(welded: &Welded, charts: &Neighbours, pairs: &[(usize, usi
     found
 }
 
-/// Labels the vertices `0..n` by the component of the graph `links` gives, numbered from
-/// 0 in order of their first vertex.
-fn label(n: usize, links: impl Fn(usize) -> Vec<usize>) -> Vec<usize> {
-    let mut label = vec![usize::MAX; n];
-    let mut next = 0;
-    let mut stack = Vec::new();
-    for start in 0..n {
-        if label[start] != usize::MAX {
-            continue;
-        }
-        label[start] = next;
-        stack.push(start);
-        while let Some(i) = stack.pop() {
-            for j in links(i) {
-                if label[j] == usize::MAX {
-                    label[j] = next;
-                    stack.push(j);
-                }
-            }
-        }
-        next += 1;
-    }
-    label
-}
-
 /// The move that takes `region` of `x` through the cloth its border crosses: along the
 /// crossed triangles' mean normal (turned to the region's side), from the region's side
 /// to [`MARGIN`] past the plane through the crossings; `None` if it would move it farther
@@ -170,15 +144,23 @@ pub(super) fn move_through(mesh: &ClothMesh, x: &[Vec3], region: &Region, most: 
     (by <= most).then(|| -by * normal)
 }
 
-/// Moves the regions of `welded` that its crossings cut off from their panels (`charts`,
-/// see [`regions`]) through what they cross, each only if that leaves fewer crossings
-/// (exempt as for [`self_intersecting_pairs`] with `rest_radius`), none farther than
-/// `most` (m). Returns how many were moved.
-pub(super) fn clear(welded: &mut Welded, charts: &Neighbours, rest_radius: f64, most: f64) -> usize {
+/// Moves the regions of `welded` that its crossings `pairs` cut off from their panels
+/// (`charts`, see [`regions`]) through what they cross, each only if that leaves fewer
+/// crossings (exempt as for [`self_intersecting_pairs`] with `rest_radius`), none farther
+/// than `most` (m). Returns how many were moved, and the crossings left.
+pub(super) fn clear(
+    welded: &mut Welded,
+    charts: &Neighbours,
+    mut pairs: Vec<(usize, usize)>,
+    rest_radius: f64,
+    most: f64,
+) -> (usize, Vec<(usize, usize)>) {
     let crossings = |mesh: &ClothMesh| self_intersecting_pairs(mesh, &[], rest_radius, mesh.positions());
-    let mut pairs = crossings(&welded.mesh);
     let mut moved = 0;
     for _ in 0..ROUNDS {
+        if pairs.is_empty() {
+            break;
+        }
         let mut any = false;
         for region in regions(welded, charts, &pairs) {
             let mesh = &mut welded.mesh;
@@ -195,11 +177,11 @@ pub(super) fn clear(welded: &mut Welded, charts: &Neighbours, rest_radius: f64, 
                 mesh.translate_vertices(&region.particles, -by);
             }
         }
-        if !any || pairs.is_empty() {
+        if !any {
             break;
         }
     }
-    moved
+    (moved, pairs)
 }
 
 #[cfg(test)]
@@ -280,8 +262,9 @@ mod tests {
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].particles, vec![first, first + 1]);
         // Moved up through the sheet as one, to just above it, and nothing crosses.
-        let moved = clear(&mut welded, &charts, 0.0, 0.02);
+        let (moved, left) = clear(&mut welded, &charts, pairs, 0.0, 0.02);
         assert_eq!(moved, 1);
+        assert!(left.is_empty());
         let x = welded.mesh.positions();
         assert!(self_intersecting_pairs(&welded.mesh, &[], 0.0, x).is_empty());
         for i in [first, first + 1] {
@@ -305,7 +288,9 @@ mod tests {
         let found = regions(&welded, &charts, &pairs);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].particles.len(), 6);
-        assert_eq!(clear(&mut welded, &charts, 0.0, 0.02), 0);
+        let (moved, left) = clear(&mut welded, &charts, pairs.clone(), 0.0, 0.02);
+        assert_eq!(moved, 0);
+        assert_eq!(left, pairs);
         assert_eq!(welded.mesh.positions(), &x0[..]);
     }
 }

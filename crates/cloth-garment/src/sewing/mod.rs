@@ -251,28 +251,25 @@ pub fn sew(
                     break;
                 }
                 let open = zip::open_pairs(garment, sim.positions(), settings.gap_tolerance);
-                match zip::held_open(garment, &sim, bodies.as_ref(), &open) {
-                    HeldOpen::Nothing if gap <= ZIP_WELD * spacing => {
-                        zip = Some(zip::Zip::new(open, sim.positions(), stall.window));
-                        stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Zipped));
-                    }
-                    held_by => {
-                        // With nothing between, the reach that was passed is the zip's.
-                        let reach = if held_by == HeldOpen::Nothing {
-                            ZIP_WELD * spacing
-                        } else {
-                            weld
-                        };
-                        return Err(GarmentError::Stalled {
-                            steps,
-                            seam: garment.seams[seam].name.clone(),
-                            gap_mm: 1e3 * gap,
-                            pull_factor: pull_level.boost,
-                            weld_mm: 1e3 * reach,
-                            held_by,
-                        });
-                    }
+                let held_by = zip::held_open(garment, &sim, bodies.as_ref(), &open);
+                // With nothing between, the seams reach as far as a zip draws in.
+                let reach = if held_by == HeldOpen::Nothing {
+                    ZIP_WELD * spacing
+                } else {
+                    weld
+                };
+                if gap > reach || held_by != HeldOpen::Nothing {
+                    return Err(GarmentError::Stalled {
+                        steps,
+                        seam: garment.seams[seam].name.clone(),
+                        gap_mm: 1e3 * gap,
+                        pull_factor: pull_level.boost,
+                        weld_mm: 1e3 * reach,
+                        held_by,
+                    });
                 }
+                zip = Some(zip::Zip::new(open, sim.positions(), stall.window));
+                stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Zipped));
             } else {
                 pull_level.raise();
                 stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Pulled));

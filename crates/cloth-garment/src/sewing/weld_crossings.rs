@@ -52,19 +52,21 @@ pub(super) fn clear(
     }
     let free = |i: usize| members[i] <= 1;
     let rounds = (most / STEP).ceil() as usize;
+    let found = self_intersecting_pairs(&welded.mesh, &[], rest_radius, welded.mesh.positions());
     let mut report = WeldCrossings {
-        found: self_intersecting_pairs(&welded.mesh, &[], rest_radius, welded.mesh.positions()).len(),
+        found: found.len(),
         ..WeldCrossings::default()
     };
-    if report.found > 0 {
-        report.regions_moved = cut_off::clear(welded, charts, rest_radius, most);
-    }
+    let (regions_moved, mut pairs) = cut_off::clear(welded, charts, found, rest_radius, most);
+    report.regions_moved = regions_moved;
     let mut moved = vec![false; n];
     // The fewest crossings yet, and where: moving cloth out may cross other cloth.
     let mut best: Option<(usize, Vec<Vec3>)> = None;
     for round in 0..=rounds {
         let x = welded.mesh.positions().to_vec();
-        let pairs = self_intersecting_pairs(&welded.mesh, &[], rest_radius, &x);
+        if round > 0 {
+            pairs = self_intersecting_pairs(&welded.mesh, &[], rest_radius, &x);
+        }
         if best.as_ref().is_none_or(|(count, _)| pairs.len() < *count) {
             best = Some((pairs.len(), x.clone()));
         }
@@ -76,7 +78,7 @@ pub(super) fn clear(
             Proximity::Far { .. } => (fallback, f64::INFINITY),
         };
         moved.iter_mut().for_each(|m| *m = false);
-        for (e, tri) in pairs {
+        for &(e, tri) in &pairs {
             let edge = welded.mesh.edges()[e];
             let triangle = welded.mesh.triangles()[tri];
             let [a, b, c] = triangle.map(|i| x[i]);
