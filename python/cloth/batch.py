@@ -707,6 +707,7 @@ def drape(
     body_up_axis: Literal["y", "z"] | None = None,
     fabric: str = "cotton_poplin",
     edge_length: float = 0.015,
+    min_thickness: float | None = None,
     executor: concurrent.futures.Executor | None = None,
 ) -> DrapeResult:
     """Drapes every pattern on ``body``, as ``cloth drape`` does, on any executor.
@@ -714,11 +715,13 @@ def drape(
     ``patterns`` are pattern files (our TOML or GarmentCode JSON) or folders searched for
     them; each drapes into ``out_dir/<pattern name>`` with ``fabric`` at ``edge_length``
     (m) on the body file (``body_up_axis`` ``"y"`` for GarmentCode's and SMPL's y-up
-    bodies; by default glTF's is y, the other formats' z), through :func:`run_batch`, so
+    bodies; by default glTF's is y, the other formats' z), its 3 mm contact layer thinned
+    where it is flat down to ``min_thickness`` (m; ``None``: 1 mm, as the command's
+    ``--min-thickness``; 0.003 keeps it uniform), through :func:`run_batch`, so
     patterns done by an earlier batch are skipped. ``out_dir/summary.json`` and
     ``summary.md`` then say how every pattern ended, in the same form as the command's.
     ``ValueError`` before anything runs for a missing pattern or folder, two patterns of
-    one name, an unknown fabric or a bad edge length.
+    one name, an unknown fabric, a bad edge length or minimum thickness.
     """
     inputs = [patterns] if isinstance(patterns, (str, os.PathLike)) else list(patterns)
     scenes = _drape_scenes(
@@ -727,6 +730,7 @@ def drape(
         body_up_axis=body_up_axis,
         fabric=fabric,
         edge_length=edge_length,
+        min_thickness=min_thickness,
     )
     jobs = [Job(name=name, scene=tomllib.loads(text)) for name, _, text in scenes]
     result = run_batch(jobs, out_dir, executor=executor)

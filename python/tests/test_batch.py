@@ -515,6 +515,8 @@ def test_drape_writes_the_commands_summary_and_skips_finished_patterns(tmp_path:
 
     with pytest.raises(ValueError, match="tweed"):
         batch.drape([band], body, out, fabric="tweed")
+    with pytest.raises(ValueError, match="min_thickness"):
+        batch.drape([band], body, out, min_thickness=0.004)
     empty = tmp_path / "empty"
     empty.mkdir()
     with pytest.raises(ValueError, match="holds no pattern"):

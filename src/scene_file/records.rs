@@ -189,6 +189,12 @@ pub struct BodySpec {
     pub position: [f64; 3],
     /// Contact thickness, m.
     pub thickness: Option<f64>,
+    /// Thins the contact layer where the body is flat, down to this, m: at each point of
+    /// the surface the layer is this plus the dip of the cloth's longest edges over the
+    /// surface's convex curve there, up to `thickness` (see `cloth_collide::Body::with_thinned_layer`).
+    /// For a cloth whose edge length is known before it is built (a garment, a grid, a
+    /// Cusick test).
+    pub min_thickness: Option<f64>,
     /// Coulomb coefficient (the fabric's when not given).
     pub friction: Option<f64>,
 }

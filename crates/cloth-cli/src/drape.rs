@@ -40,6 +40,11 @@ pub struct DrapeArgs {
     /// Target edge length of the cloth mesh, m.
     #[arg(long, default_value_t = cloth::garment::garment::DEFAULT_EDGE_LENGTH)]
     pub edge_length: f64,
+    /// The body's contact layer, 3 mm, thinned down to this where the body is flat, m: at
+    /// each point, this plus the dip of the cloth's longest edges over the body's curve
+    /// there (3 mm keeps it uniform).
+    #[arg(long, default_value_t = cloth::drape::DEFAULT_BODY_MIN_THICKNESS)]
+    pub min_thickness: f64,
     /// The folder for the outputs: one folder per pattern, and summary.json, summary.md.
     #[arg(long)]
     pub out: PathBuf,
@@ -246,6 +251,13 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
             )));
         }
     }
+    let layer = cloth::collide::DEFAULT_THICKNESS;
+    if !(args.min_thickness > 0.0 && args.min_thickness <= layer) {
+        return Err(Failure::input(format!(
+            "--min-thickness {} must be a positive length in m, at most the body's contact thickness ({layer} m)",
+            args.min_thickness
+        )));
+    }
     FabricLibrary::builtin()
         .fabric(&args.fabric)
         .map_err(Failure::input)?;
@@ -267,6 +279,7 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
         }),
         fabric: args.fabric.clone(),
         edge_length: args.edge_length,
+        body_min_thickness: (args.min_thickness < layer).then_some(args.min_thickness),
     };
     std::fs::create_dir_all(&args.out).map_err(|e| {
         Failure::input(format!(

@@ -146,6 +146,27 @@ fn bad_scenes_exit_with_2_and_name_the_place() {
     );
     assert_eq!(code, Some(2));
     assert!(e.contains("bodies[0]") && e.contains("missing.obj"), "{e}");
+    // A body's contact layer thinned past its thickness names the body and the key;
+    // thinned within it, the scene is good.
+    let (code, e) = check_text(
+        &dir,
+        &SHEET.replace(
+            "sphere = { radius = 0.3 }",
+            "sphere = { radius = 0.3 }
+min_thickness = 0.005",
+        ),
+    );
+    assert_eq!(code, Some(2));
+    assert!(e.contains("bodies[0]") && e.contains("min_thickness"), "{e}");
+    let (code, e) = check_text(
+        &dir,
+        &SHEET.replace(
+            "sphere = { radius = 0.3 }",
+            "sphere = { radius = 0.3 }
+min_thickness = 0.001",
+        ),
+    );
+    assert_eq!(code, Some(0), "{e}");
     // Wrong units: a length as text.
     let (code, e) = check_text(
         &dir,
@@ -460,6 +481,21 @@ fn a_cloth_from_a_mesh_file_runs_with_its_pins() {
     let o = cloth(&["check", scene.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("cloth.mesh.pins[0]"), "{}", stderr(&o));
+    // A body's layer thinned to the cloth's edges, whose length a mesh file does not say
+    // before it is read, is refused naming the key.
+    std::fs::write(
+        &scene,
+        format!(
+            "{}[[bodies]]\nsphere = {{ radius = 0.1 }}\nposition = [0.2, 0.2, 0.5]\nmin_thickness = 0.001\n",
+            std::fs::read_to_string(&scene)
+                .unwrap()
+                .replace("pins = [500,", "pins = [0,")
+        ),
+    )
+    .unwrap();
+    let o = cloth(&["check", scene.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("bodies[0].min_thickness"), "{}", stderr(&o));
 }
 
 #[test]
@@ -560,6 +596,9 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
         table.contains("1 of 2 patterns finished") && table.contains("| rand_1_001 | finished"),
         "{table}"
     );
+    // The body's contact layer is thinned where it is flat, by default.
+    let scene = std::fs::read_to_string(out.join("rand_1_001/scene.toml")).unwrap();
+    assert!(scene.contains("min_thickness = 0.001"), "{scene}");
     // The scene written beside the outputs runs the same drape again.
     let again = cloth(&["check", out.join("rand_1_001/scene.toml").to_str().unwrap()]);
     assert!(again.status.success(), "{}", stderr(&again));
@@ -603,6 +642,15 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
     assert!(stderr(&bad_body).contains("missing.obj"));
     let bad_fabric = run(&["--fabric", "tweed"]);
     assert_eq!(bad_fabric.status.code(), Some(2));
+    for layer in ["0", "0.004"] {
+        let bad_layer = run(&["--min-thickness", layer]);
+        assert_eq!(bad_layer.status.code(), Some(2), "{}", stderr(&bad_layer));
+        assert!(
+            stderr(&bad_layer).contains("--min-thickness"),
+            "{}",
+            stderr(&bad_layer)
+        );
+    }
     let empty = dir.join("empty");
     std::fs::create_dir_all(&empty).unwrap();
     let o = cloth(&[

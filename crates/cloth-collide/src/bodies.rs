@@ -71,7 +71,7 @@ impl Bodies {
             let rank = if hit.crossed {
                 hit.entry - 2.0
             } else {
-                hit.distance - d
+                hit.distance - hit.thickness
             };
             if best.as_ref().is_some_and(|(_, r)| *r <= rank) {
                 continue;
@@ -82,7 +82,7 @@ impl Bodies {
                 normal: hit.normal,
                 distance: hit.distance,
                 velocity: body.motion().velocity_at(t1, &hit.point),
-                thickness: d,
+                thickness: hit.thickness,
                 friction: body.friction(),
                 crossed: hit.crossed,
             };

@@ -2,6 +2,7 @@
 //! and its thick parts alone), how it moves, and its contact properties.
 
 use crate::contact_mesh::{ContactMesh, LocalPoint};
+use crate::layer::thinned_layer;
 use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
 use crate::thin_parts::{thin_triangles, THIN_PART};
 use crate::Motion;
@@ -43,7 +44,12 @@ pub struct Body {
     sharp: Vec<SurfaceFeature>,
     sharp_angle: f64,
     motion: Motion,
+    /// The contact thickness, m: everywhere, or the most anywhere when `layer` thins it.
     thickness: f64,
+    /// The contact layer thinned where the surface is flat (see [`crate::layer`]): the
+    /// cloth's edge length and the floor it was made for, m, and its thickness at each of
+    /// the surface's vertices.
+    layer: Option<Layer>,
     /// `None`: the fabric's own coefficient applies.
     friction: Option<f64>,
     /// Largest distance of a surface vertex from the local origin.
@@ -94,6 +100,14 @@ fn thick_parts(
     }
 }
 
+/// A contact layer thinned where the surface is flat.
+#[derive(Debug, Clone)]
+struct Layer {
+    edge_length: f64,
+    floor: f64,
+    at_vertex: Vec<f64>,
+}
+
 /// Which of a body a query meets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Parts {
@@ -111,6 +125,8 @@ pub(crate) struct BodyPoint {
     pub crossed: bool,
     /// Fraction of the path at the entry (1 for a plain proximity).
     pub entry: f64,
+    /// The contact thickness there, m.
+    pub thickness: f64,
 }
 
 impl Body {
@@ -149,6 +165,7 @@ impl Body {
             sharp_angle: angle,
             motion: Motion::default(),
             thickness: DEFAULT_THICKNESS,
+            layer: None,
             friction: None,
             radius,
         }
@@ -231,6 +248,39 @@ impl Body {
             "a positive thickness in m (a few millimetres)",
         )?;
         self.thickness = thickness;
+        if let Some(layer) = self.layer.take() {
+            return self.with_thinned_layer(layer.edge_length, layer.floor);
+        }
+        Ok(self)
+    }
+    /// Thins the contact layer where the surface is flat (see [`crate::layer`]): at each
+    /// point, `floor` plus the dip of a straight edge of the cloth, `edge_length` long, over
+    /// the surface's convex curvature there, up to the body's thickness (m).
+    pub fn with_thinned_layer(mut self, edge_length: f64, floor: f64) -> Result<Self, BodyError> {
+        self.check(
+            edge_length > 0.0 && edge_length.is_finite(),
+            "edge_length",
+            edge_length,
+            "the cloth's edge length, a positive length in m",
+        )?;
+        self.check(
+            floor > 0.0 && floor <= self.thickness,
+            "min_thickness",
+            floor,
+            "a positive thickness in m, at most the body's thickness",
+        )?;
+        let at_vertex = thinned_layer(
+            self.surface.vertices(),
+            self.full.triangles(),
+            edge_length,
+            floor,
+            self.thickness,
+        );
+        self.layer = Some(Layer {
+            edge_length,
+            floor,
+            at_vertex,
+        });
         Ok(self)
     }
     /// Coulomb friction coefficient of cloth on this body, in place of the fabric's own;
@@ -267,8 +317,16 @@ impl Body {
     pub fn motion(&self) -> &Motion {
         &self.motion
     }
+    /// The contact thickness, m: the most anywhere, if the layer is thinned where the
+    /// surface is flat.
     pub fn thickness(&self) -> f64 {
         self.thickness
+    }
+    /// The thinnest the contact layer is anywhere, m.
+    pub fn min_thickness(&self) -> f64 {
+        self.layer.as_ref().map_or(self.thickness, |l| {
+            l.at_vertex.iter().copied().fold(self.thickness, f64::min)
+        })
     }
     /// The body's own coefficient, if it sets one (otherwise the fabric's applies).
     pub fn friction(&self) -> Option<f64> {
@@ -363,13 +421,21 @@ impl Body {
             distance,
             crossed,
             entry,
+            corners,
+            weights,
         } = surface.sweep(&p0, &p1, min_start_distance, max_distance, self.radius)?;
+        let thickness = self.layer.as_ref().map_or(self.thickness, |l| {
+            (0..3)
+                .map(|k| weights[k] * l.at_vertex[corners[k] as usize])
+                .sum()
+        });
         Some(BodyPoint {
             point: (pose1 * Point3::from(point)).coords,
             normal: pose1.rotation * normal,
             distance,
             crossed,
             entry,
+            thickness,
         })
     }
 }

@@ -20,6 +20,10 @@ pub(crate) struct LocalPoint {
     pub crossed: bool,
     /// Fraction of the path at the entry (1 for a plain proximity).
     pub entry: f64,
+    /// The surface's vertices round `point` and their weights in it, for what the body
+    /// keeps per vertex (its contact layer).
+    pub corners: [u32; 3],
+    pub weights: [f64; 3],
 }
 
 #[derive(Debug, Clone)]
@@ -126,12 +130,15 @@ impl ContactMesh {
                         .mesh
                         .project_local_point_and_get_location(to_parry(&entry), false);
                     let n = self.shading.normal(&self.mesh, triangle, &location).unwrap_or(n);
+                    let (corners, weights) = self.corners(triangle, &location);
                     return Some(LocalPoint {
                         point: entry,
                         normal: n,
                         distance: n.dot(&(p1 - entry)),
                         crossed: true,
                         entry: hit.time_of_impact,
+                        corners,
+                        weights,
                     });
                 }
             }
@@ -154,13 +161,22 @@ impl ContactMesh {
             None if distance > 1e-9 * scale.max(1e-3) => sign * offset / distance,
             None => from_parry(self.mesh.triangle(triangle).scaled_normal()).normalize(),
         };
+        let (corners, weights) = self.corners(triangle, &location);
         Some(LocalPoint {
             point: q,
             normal,
             distance: sign * distance,
             crossed: false,
             entry: 1.0,
+            corners,
+            weights,
         })
+    }
+
+    /// The vertices of `triangle` and the weights of `location` in them.
+    fn corners(&self, triangle: u32, location: &TrianglePointLocation) -> ([u32; 3], [f64; 3]) {
+        let w = location.barycentric_coordinates().unwrap_or([1.0 / 3.0; 3]);
+        (self.mesh.indices()[triangle as usize], w)
     }
 
     /// The chord through the body from each triangle's centre along its inward normal, as

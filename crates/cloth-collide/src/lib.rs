@@ -10,6 +10,7 @@ mod bodies;
 mod body;
 mod contact_mesh;
 mod convert;
+mod layer;
 mod motion;
 pub mod surface;
 mod thin_parts;

@@ -140,3 +140,46 @@ fn cloth_passing_thin_parts_meets_only_the_thick_ones() {
     let trunk = Body::new("trunk", TriSurface::cuboid(Vec3::new(0.2, 0.2, 0.2)).unwrap());
     assert_eq!(trunk.thin_fraction(), 0.0);
 }
+
+#[test]
+fn a_thinned_layer_is_thin_on_a_broad_curve_and_stays_thick_on_a_tight_one() {
+    // The floor and the edge must be positive, the floor at most the thickness (3 mm).
+    for bad in [0.0, -1e-3, 4e-3, f64::NAN] {
+        assert_names(
+            ball().with_thinned_layer(0.015, bad).unwrap_err(),
+            "min_thickness",
+        );
+    }
+    for bad in [0.0, f64::INFINITY] {
+        assert_names(ball().with_thinned_layer(bad, 1e-3).unwrap_err(), "edge_length");
+    }
+    // A ball of 50 cm: an edge of 1.5 cm dips 0.06 mm below its ends, so the layer is
+    // the floor and that. A particle 2 mm out is in the layer of the uniform 3 mm but
+    // clear of the thinned one, by the 2 mm less the layer there.
+    let broad = Body::new("ball", TriSurface::icosphere(0.5, 5).unwrap());
+    let dip = 0.015f64.powi(2) / (8.0 * 0.5);
+    let x = Vec3::new(0.0, 0.0, 0.502);
+    let gap = |body: Body| match Bodies::new(vec![body]).sweep(0.0, &x, 0.0, &x, 0.0, 0.01) {
+        Proximity::Near(p) => p.gap(),
+        far => panic!("{far:?}"),
+    };
+    let d = broad.signed_distance(0.0, &x);
+    assert!((gap(broad.clone()) - (d - 0.003)).abs() < 1e-12);
+    let thinned = broad.clone().with_thinned_layer(0.015, 1e-3).unwrap();
+    assert!(
+        (thinned.min_thickness() - 1e-3 - dip).abs() < 0.05 * dip,
+        "{}",
+        thinned.min_thickness()
+    );
+    let layer = d - gap(thinned.clone());
+    assert!((layer - 1e-3 - dip).abs() < 0.05 * dip, "{layer}");
+    // The thickness set afterwards is the new ceiling, the layer made again under it.
+    let ceiling = thinned.with_thickness(1.02e-3).unwrap();
+    assert_eq!(ceiling.thickness(), 1.02e-3);
+    assert_eq!(ceiling.min_thickness(), 1.02e-3);
+    // A ball of 1 cm: the dip (2.8 mm) and the floor are over the 3 mm, which holds.
+    let tight = Body::new("ball", TriSurface::icosphere(0.01, 3).unwrap())
+        .with_thinned_layer(0.015, 1e-3)
+        .unwrap();
+    assert_eq!(tight.min_thickness(), 0.003);
+}

@@ -57,7 +57,7 @@ impl Body {
         }
         let what = format!("Body.{shape}");
         let spec: BodySpec = from_toml_value(toml::Value::Table(table), &what)?;
-        let parts = spec.build("cloth.Body", dir, shape).map_err(input)?;
+        let parts = spec.build("cloth.Body", dir, shape, None).map_err(input)?;
         let name = common.name.unwrap_or_else(|| match parts.as_slice() {
             [one] => one.name().to_string(),
             _ => shape.to_string(),

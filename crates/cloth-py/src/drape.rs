@@ -12,19 +12,27 @@ use std::path::PathBuf;
 /// patterns) as `(name, path, scene)`: the folder name its outputs go under, the pattern
 /// file, and the text of the scene that drapes it on `body` (as `cloth drape` writes it
 /// beside the outputs). ValueError for a missing input, a folder without patterns, two
-/// patterns of one name, an unknown fabric or a bad edge length.
+/// patterns of one name, an unknown fabric, a bad edge length or minimum thickness.
 #[pyfunction(name = "_drape_scenes")]
-#[pyo3(signature = (inputs, body, *, body_up_axis = None, fabric = "cotton_poplin", edge_length = 0.015))]
+#[pyo3(signature = (inputs, body, *, body_up_axis = None, fabric = "cotton_poplin", edge_length = 0.015, min_thickness = None))]
 pub fn drape_scenes(
     inputs: Vec<PathBuf>,
     body: PathBuf,
     body_up_axis: Option<&str>,
     fabric: &str,
     edge_length: f64,
+    min_thickness: Option<f64>,
 ) -> PyResult<Vec<(String, String, String)>> {
     if !(edge_length.is_finite() && edge_length > 0.0) {
         return Err(input(format!(
             "edge_length {edge_length} must be a positive length in m"
+        )));
+    }
+    let layer = cloth::collide::DEFAULT_THICKNESS;
+    let min_thickness = min_thickness.unwrap_or(cloth::drape::DEFAULT_BODY_MIN_THICKNESS);
+    if !(min_thickness > 0.0 && min_thickness <= layer) {
+        return Err(input(format!(
+            "min_thickness {min_thickness} must be a positive length in m, at most the body's contact thickness ({layer} m)"
         )));
     }
     cloth::presets::FabricLibrary::builtin()
@@ -36,6 +44,7 @@ pub fn drape_scenes(
         body_up_axis,
         fabric: fabric.to_string(),
         edge_length,
+        body_min_thickness: (min_thickness < layer).then_some(min_thickness),
     };
     let patterns = find_patterns(&inputs).map_err(input)?;
     Ok(patterns
