@@ -23,6 +23,19 @@ pub const FINISHED_FILE: &str = "finished.json";
 /// this one, with no edge through the body).
 pub const DEFAULT_BODY_MIN_THICKNESS: f64 = 0.001;
 
+/// The floor of the body's layer a batch asks for (see [`DEFAULT_BODY_MIN_THICKNESS`]),
+/// as [`DrapeRequest::body_min_thickness`] holds it: `None` at the body's own thickness (a
+/// uniform layer). Refused, saying why, unless positive and at most that thickness.
+pub fn body_min_thickness(floor: f64) -> Result<Option<f64>, String> {
+    let layer = crate::collide::DEFAULT_THICKNESS;
+    if !(floor > 0.0 && floor <= layer) {
+        return Err(format!(
+            "{floor} must be a positive length in m, at most the body's contact thickness ({layer} m)"
+        ));
+    }
+    Ok((floor < layer).then_some(floor))
+}
+
 /// What to drape every pattern with.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DrapeRequest {

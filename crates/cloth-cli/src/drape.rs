@@ -251,13 +251,8 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
             )));
         }
     }
-    let layer = cloth::collide::DEFAULT_THICKNESS;
-    if !(args.min_thickness > 0.0 && args.min_thickness <= layer) {
-        return Err(Failure::input(format!(
-            "--min-thickness {} must be a positive length in m, at most the body's contact thickness ({layer} m)",
-            args.min_thickness
-        )));
-    }
+    let body_min_thickness = cloth::drape::body_min_thickness(args.min_thickness)
+        .map_err(|e| Failure::input(format!("--min-thickness {e}")))?;
     FabricLibrary::builtin()
         .fabric(&args.fabric)
         .map_err(Failure::input)?;
@@ -279,7 +274,7 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
         }),
         fabric: args.fabric.clone(),
         edge_length: args.edge_length,
-        body_min_thickness: (args.min_thickness < layer).then_some(args.min_thickness),
+        body_min_thickness,
     };
     std::fs::create_dir_all(&args.out).map_err(|e| {
         Failure::input(format!(

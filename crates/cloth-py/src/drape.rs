@@ -28,13 +28,9 @@ pub fn drape_scenes(
             "edge_length {edge_length} must be a positive length in m"
         )));
     }
-    let layer = cloth::collide::DEFAULT_THICKNESS;
-    let min_thickness = min_thickness.unwrap_or(cloth::drape::DEFAULT_BODY_MIN_THICKNESS);
-    if !(min_thickness > 0.0 && min_thickness <= layer) {
-        return Err(input(format!(
-            "min_thickness {min_thickness} must be a positive length in m, at most the body's contact thickness ({layer} m)"
-        )));
-    }
+    let body_min_thickness =
+        cloth::drape::body_min_thickness(min_thickness.unwrap_or(cloth::drape::DEFAULT_BODY_MIN_THICKNESS))
+            .map_err(|e| input(format!("min_thickness {e}")))?;
     cloth::presets::FabricLibrary::builtin()
         .fabric(fabric)
         .map_err(input)?;
@@ -44,7 +40,7 @@ pub fn drape_scenes(
         body_up_axis,
         fabric: fabric.to_string(),
         edge_length,
-        body_min_thickness: (min_thickness < layer).then_some(min_thickness),
+        body_min_thickness,
     };
     let patterns = find_patterns(&inputs).map_err(input)?;
     Ok(patterns
