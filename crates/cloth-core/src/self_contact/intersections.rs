@@ -38,7 +38,7 @@ pub(crate) fn count(topology: &Topology, x: &[Vec3]) -> Intersections {
 }
 
 /// The (edge, triangle) pairs passing through each other at `x`, not exempt, sorted.
-fn crossing_pairs(topology: &Topology, x: &[Vec3]) -> Vec<(usize, usize)> {
+pub(super) fn crossing_pairs(topology: &Topology, x: &[Vec3]) -> Vec<(usize, usize)> {
     let tris = &topology.triangles;
     let tree = triangle_tree(topology, x);
     let mut pairs: Vec<(usize, usize)> = (0..topology.edges.len())

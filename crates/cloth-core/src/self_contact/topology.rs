@@ -275,6 +275,15 @@ impl Topology {
         }
     }
 
+    /// Whether edge `e` and triangle `t` are on the two sides of a layer pass, one let
+    /// through the other.
+    pub fn edge_triangle_passing(&self, e: usize, t: usize) -> bool {
+        !self.pass_side.is_empty()
+            && self.edges[e]
+                .iter()
+                .any(|&p| self.triangles[t].iter().any(|&q| self.passing(p, q)))
+    }
+
     /// Whether charts `a` and `b` are exempt from each other, having begun tangled.
     fn charts_tangled(&self, a: u32, b: u32) -> bool {
         a != b && self.tangled.binary_search(&(a.min(b), a.max(b))).is_ok()
@@ -309,7 +318,7 @@ impl Topology {
     }
 
     /// The triangles of edge `e`.
-    fn edge_triangles(&self, e: usize) -> impl Iterator<Item = usize> + '_ {
+    pub fn edge_triangles(&self, e: usize) -> impl Iterator<Item = usize> + '_ {
         let [a, b] = self.edges[e];
         self.triangles_of(a as usize)
             .iter()

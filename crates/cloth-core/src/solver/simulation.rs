@@ -1063,11 +1063,16 @@ impl Simulation {
         }
     }
 
-    /// Lets the tangled pieces that have come apart collide again.
+    /// Pulls the cloth out of itself where it passes through itself, and lets the tangled
+    /// pieces that have come apart collide again.
     fn release_tangles(&mut self) {
-        let Some(sc) = self.self_contacts.as_mut().filter(|sc| sc.has_tangles()) else {
+        let Some(sc) = self.self_contacts.as_mut() else {
             return;
         };
+        sc.pull_apart(&mut self.x);
+        if !sc.has_tangles() {
+            return;
+        }
         for pair in sc.release_untangled(&self.x) {
             if let Some(t) = self
                 .tangles
