@@ -189,7 +189,7 @@ pub(crate) struct SelfContacts {
 /// the thinnest fabric (3 mm in cotton poplin). Smaller moves were undone by the step's
 /// own forces as fast as they were made: at half a thickness GarmentCode's rand_1_042
 /// kept 3 crossings to rest; at five, rand_1_034's collar stayed through its front
-/// (6 to 10 crossings a step, 8 to rest); at ten, both came apart within a dozen steps.
+/// (6 to 10 crossings a step, 5 to rest); at ten, both came apart within a dozen steps.
 const PULL_APART: f64 = 10.0;
 
 /// Steps the pull goes on without leaving fewer crossings than its best before it stops

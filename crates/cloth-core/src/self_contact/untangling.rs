@@ -4,8 +4,9 @@
 //! itself by the weld is not held apart by a collision that starts crossed; nothing but the
 //! seams and gravity took either apart. Where three panels meet, a hood's or a collar's
 //! corner folded through the shoulder it is sewn to stayed through it to rest: of the
-//! crossings left at rest on GarmentCode's rand_1_042, rand_1_076 and rand_1_034, 14 of 16,
-//! all 31 and all 16 touched such a junction or its ring of neighbours.
+//! crossings left at rest on GarmentCode's rand_1_042 and rand_1_076, all 16 and all 31
+//! touched such a junction (a particle of three or more panels) or its ring of
+//! neighbours, and 14 of 16 on rand_1_034 lay within two rings of one.
 //!
 //! Where two surfaces pass through each other they meet along a curve, and shrinking the
 //! curve to nothing takes them apart. At a point of the curve, with the surfaces' normals
