@@ -22,7 +22,6 @@
 use super::intersections::crossing_pairs;
 use super::topology::Topology;
 use crate::Vec3;
-use std::collections::HashMap;
 
 /// A point of the curve: the crossing of an edge through a triangle.
 struct Point {
@@ -67,17 +66,18 @@ fn moves(topology: &Topology, x: &[Vec3], pairs: &[(usize, usize)], step: f64) -
         });
     }
     // Each pair of triangles through each other holds a piece of the curve, its ends two
-    // points: an edge of either through the other.
-    let mut ends: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    // points: an edge of either through the other. (Sorted, not hashed: the same sums in
+    // the same order on every run.)
+    let mut ends: Vec<((usize, usize), usize)> = Vec::with_capacity(2 * points.len());
     for (k, point) in points.iter().enumerate() {
         for s in topology.edge_triangles(point.edge) {
-            let key = (s.min(point.triangle), s.max(point.triangle));
-            ends.entry(key).or_default().push(k);
+            ends.push(((s.min(point.triangle), s.max(point.triangle)), k));
         }
     }
+    ends.sort_unstable();
     let mut curvature = vec![Vec3::zeros(); points.len()];
-    for list in ends.values() {
-        if let [i, j] = list[..] {
+    for piece in ends.chunk_by(|a, b| a.0 == b.0) {
+        if let [(_, i), (_, j)] = *piece {
             if let Some(towards) = (points[j].at - points[i].at).try_normalize(1e-12) {
                 curvature[i] += towards;
                 curvature[j] -= towards;
