@@ -183,6 +183,9 @@ pub(crate) struct SelfContacts {
     /// The fewest crossings the pull has left, and the steps since it left fewer.
     fewest: usize,
     stale: u32,
+    /// The most the pull moves a particle in a step, m ([`PULL_APART`] thicknesses of the
+    /// thinnest fabric).
+    pull_step: f64,
 }
 
 /// The most a particle is moved per step to pull cloth out of itself, in thicknesses of
@@ -223,7 +226,9 @@ impl SelfContacts {
         let friction: Vec<f64> = (0..n)
             .map(|i| settings.friction.unwrap_or_else(|| friction(i)))
             .collect();
-        let touch = 0.02 * 2.0 * half_thickness.iter().copied().fold(f64::INFINITY, f64::min);
+        let thinnest = 2.0 * half_thickness.iter().copied().fold(f64::INFINITY, f64::min);
+        let touch = 0.02 * thinnest;
+        let pull_step = PULL_APART * thinnest;
         let surface = SurfaceTree::new(&topology, mesh.positions());
         Self {
             stiffness: settings
@@ -255,6 +260,7 @@ impl SelfContacts {
             crossed: true,
             fewest: usize::MAX,
             stale: 0,
+            pull_step,
         }
     }
 
@@ -532,9 +538,8 @@ impl SelfContacts {
         if !self.crossed {
             return 0;
         }
-        let most = PULL_APART * 2.0 * self.half_thickness.iter().copied().fold(f64::INFINITY, f64::min);
         let inv_mass = &self.inv_mass;
-        let crossings = untangling::pull_apart(&self.topology, x, |i| inv_mass[i] == 0.0, most);
+        let crossings = untangling::pull_apart(&self.topology, x, |i| inv_mass[i] == 0.0, self.pull_step);
         if crossings < self.fewest {
             (self.fewest, self.stale) = (crossings, 0);
         } else {
