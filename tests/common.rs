@@ -32,7 +32,8 @@ pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
 }
 
 /// GarmentCode's design `design` (a pattern in assets/garmentcode/patterns) on its mean
-/// body, y up, at `edge_length`, in cotton poplin: the scene and its preparation.
+/// body, y up, at `edge_length`, in cotton poplin, the body's contact layer thinning to
+/// 1 mm where it is flat, as `cloth drape` sets it: the scene and its preparation.
 pub fn garmentcode_scene(
     design: &str,
     edge_length: f64,
@@ -40,6 +41,7 @@ pub fn garmentcode_scene(
     let assets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
     let text = format!(
         "name = \"{design}\"\n[[bodies]]\nfile = \"bodies/mean_all.obj\"\nup_axis = \"y\"\n\
+         min_thickness = 0.001\n\
          [cloth.garment]\nedge_length = {edge_length}\npattern = \"patterns/{design}.json\"\n\
          [fabric]\npreset = \"cotton_poplin\"\n"
     );

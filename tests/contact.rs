@@ -316,6 +316,45 @@ fn friction_holds_a_sheet_on_a_slope_only_when_mu_exceeds_tan_a() {
     assert!(held.abs() < 1e-3, "held sheet moved {:.3} mm", held * 1e3);
 }
 
+/// Friction that holds a sheet on a slope, let go of (as the sewing does when seams
+/// stall), holds it no more: from rest it slides as on a frictionless slope, `g sin a`.
+#[test]
+fn a_sheet_held_by_friction_slides_freely_once_the_friction_is_let_go() {
+    let angle: f64 = 0.3;
+    let setup = TiltedPlane {
+        angle,
+        friction: 0.4,
+        ..TiltedPlane::default()
+    };
+    let mut scene = setup.build().unwrap();
+    let run = |scene: &mut Scene, seconds: f64| {
+        let sim = &mut scene.simulation;
+        let start: Vec3 = sim.positions().iter().sum::<Vec3>();
+        let criteria = RestCriteria {
+            max_time_step: None,
+            tolerance: 1e-12,
+            consecutive_steps: u32::MAX,
+            max_steps: (seconds / setup.time_step).round() as u64,
+            moving_fraction: 0.0,
+        };
+        sim.run_to_rest(&criteria).unwrap();
+        let end: Vec3 = sim.positions().iter().sum::<Vec3>();
+        (end - start).dot(&setup.downhill()) / sim.positions().len() as f64
+    };
+    let held = run(&mut scene, 0.5);
+    assert!(held.abs() < 1e-3, "held sheet moved {:.3} mm", held * 1e3);
+    assert!(scene.simulation.scale_body_friction(-1.0).is_err());
+    scene.simulation.scale_body_friction(0.0).unwrap();
+    let seconds = 1.0;
+    let expected = 0.5 * 9.81 * angle.sin() * seconds * seconds;
+    let got = run(&mut scene, seconds);
+    assert!(
+        (got - expected).abs() < 0.05 * expected,
+        "slid {got:.4} m, a frictionless slope gives {expected:.4} m"
+    );
+    assert!(scene.deepest_penetration() <= 0.1 * setup.thickness);
+}
+
 /// A sheet sliding at 1 m/s over a level plate slows down at Coulomb's `mu g` and stops,
 /// never turning back: friction as the implicit step's drag against the sliding.
 #[test]

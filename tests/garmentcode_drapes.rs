@@ -6,7 +6,7 @@
 
 mod common;
 
-use cloth::garment::sewing::sew;
+use cloth::garment::sewing::{sew, StallThen};
 use cloth::scene_file::{PreparedCloth, RunObserver, RunOutcome};
 use cloth::{Interrupt, Simulation, StepStats, Vec3};
 use std::ops::ControlFlow;
@@ -150,7 +150,15 @@ fn godets_laid_corner_to_corner_part_and_are_sewn_into_their_slits() {
         "{warnings:?}"
     );
     let sewn = sewn.unwrap();
-    assert!(sewn.report.stalls.is_empty(), "{:?}", sewn.report.stalls);
+    // Sewn without pulling harder: at most the body's friction is let go.
+    assert!(
+        sewn.report
+            .stalls
+            .iter()
+            .all(|s| s.then == StallThen::FrictionReleased),
+        "{:?}",
+        sewn.report.stalls
+    );
     // Held at their corners by their own contact, the godets are not sewn.
     let (_, held) = sew_godets(false);
     assert!(

@@ -113,6 +113,7 @@ pub(crate) fn detect_features(
     gap_bound: impl Fn(usize) -> f64,
     max_thickness: f64,
     cloth_friction: &[f64],
+    friction_scale: f64,
     out: &mut Vec<FeatureContact>,
 ) {
     out.clear();
@@ -143,7 +144,10 @@ pub(crate) fn detect_features(
                         velocity: f.velocity,
                         thickness: f.thickness,
                         // A triangle's fabric is its corners'.
-                        friction: f.friction.unwrap_or(cloth_friction[tri[0]]),
+                        friction: super::particle_contacts::scaled(
+                            f.friction.unwrap_or(cloth_friction[tri[0]]),
+                            friction_scale,
+                        ),
                     });
                 }
             }
@@ -558,7 +562,16 @@ mod tests {
         let mut set = FeatureSet::default();
         set.update(|out| out.extend_from_slice(&features));
         let mut found = Vec::new();
-        detect_features(&mut set, &triangles, &x, |_| 0.0, 0.01, &[0.3; 3000], &mut found);
+        detect_features(
+            &mut set,
+            &triangles,
+            &x,
+            |_| 0.0,
+            0.01,
+            &[0.3; 3000],
+            1.0,
+            &mut found,
+        );
         let mut all = Vec::new();
         for tri in &triangles {
             let p = tri.map(|i| x[i]);

@@ -118,6 +118,12 @@ impl Contacts {
         }
     }
 
+    /// Lets only `scale` of the friction on the bodies act (1 all, as built; 0 none), the
+    /// bodies' own coefficients and the cloth's alike.
+    pub fn scale_friction(&mut self, scale: f64) {
+        self.particles.friction_scale = scale;
+    }
+
     /// Finds the sharp features (at the step's end time `t1`) under cloth triangles at `x`.
     pub fn detect_features(&mut self, t1: f64, triangles: &[[usize; 3]], x: &[Vec3]) {
         let collider = self.collider.as_ref();
@@ -130,6 +136,7 @@ impl Contacts {
             |i| particles.feature_gap_bound(i),
             self.collider.max_thickness(),
             &particles.cloth_friction,
+            particles.friction_scale,
             &mut self.feature_hits,
         );
     }

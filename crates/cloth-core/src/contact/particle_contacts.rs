@@ -152,6 +152,9 @@ pub(crate) struct ParticleContacts {
     reach: f64,
     /// Each particle's fabric's Coulomb coefficient, for bodies that do not set their own.
     pub(super) cloth_friction: Vec<f64>,
+    /// What of the friction on the bodies acts (1 all, 0 none; see
+    /// [`super::Contacts::scale_friction`]).
+    pub(super) friction_scale: f64,
     /// The pieces passing through the bodies (done when their members no longer pass).
     pass_through: Vec<PassThrough>,
 }
@@ -178,6 +181,7 @@ impl ParticleContacts {
             active: Vec::with_capacity(n),
             reach,
             cloth_friction,
+            friction_scale: 1.0,
         }
     }
 
@@ -288,7 +292,7 @@ impl ParticleContacts {
             } else {
                 relative.dot(&n).max(-p.gap() / h).min(0.0)
             };
-            let friction = p.friction.unwrap_or(self.cloth_friction[i]);
+            let friction = scaled(p.friction.unwrap_or(self.cloth_friction[i]), self.friction_scale);
             let (kind, velocity) = if friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
                 (ConstraintKind::Fixed, p.velocity + correction * n)
@@ -577,5 +581,15 @@ impl ParticleContacts {
         } else {
             self.gap_lower_bound(i)
         }
+    }
+}
+
+/// A Coulomb coefficient `mu` times `scale`, none at a scale of zero (even where `mu` is
+/// infinite: a contact that sticks).
+pub(super) fn scaled(mu: f64, scale: f64) -> f64 {
+    if scale == 0.0 {
+        0.0
+    } else {
+        scale * mu
     }
 }

@@ -428,6 +428,22 @@ impl Simulation {
         self.interrupt = interrupt;
     }
 
+    /// Lets only `scale` of the friction between the cloth and the bodies act (1 all, as
+    /// built; 0 none), the bodies' own coefficients and the fabrics' alike. The sewing lets
+    /// go of it when seams stall, for the panels to slide round the body to meet.
+    pub fn scale_body_friction(&mut self, scale: f64) -> Result<(), ParamError> {
+        ParamError::check(
+            scale.is_finite() && scale >= 0.0,
+            "body friction scale",
+            scale,
+            "a finite factor >= 0",
+        )?;
+        if let Some(contacts) = self.contacts.as_mut() {
+            contacts.scale_friction(scale);
+        }
+        Ok(())
+    }
+
     /// How hard the seams given to the builder pull (zero: not at all).
     pub fn set_seam_pull(&mut self, pull: SeamPull) -> Result<(), ParamError> {
         ParamError::check(

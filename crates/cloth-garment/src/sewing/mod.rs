@@ -18,7 +18,7 @@ use cloth_core::{
     Attachment, Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError,
     Simulation,
 };
-use cloth_core::{SimulationBuilder, SolverSettings, StepStats, Vec3};
+use cloth_core::{SelfCollision, SimulationBuilder, SolverSettings, StepStats, Vec3};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
@@ -61,6 +61,9 @@ pub struct SeamStall {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StallThen {
+    /// The body's friction on the cloth was let go, for the panels to slide round it
+    /// (at the first stall; the pull is raised from the next).
+    FrictionReleased,
     /// The pull was raised (or, having torn the cloth, lowered) and sewing went on.
     Pulled,
     /// With the pull at its strongest, the seams were welded where they stood (the widest
@@ -157,17 +160,26 @@ pub fn sew(
         .map(|s| if spacing > 0.0 { s / spacing } else { 1.0 })
         .collect();
     slacken_gathers(garment, spacing, &mut fabrics, &mut triangle_fabric);
-    // Friction on the body would hold seams apart where the panels press on it; the
-    // drape afterwards has the fabrics' own.
+    // The body holds the cloth by its friction while the seams close, as a dresser's
+    // hands would: without it, the pull of panels placed far below (a skirt's tiers, a
+    // flounce) or round a slope (a band round the upper arms) drew the bodices they are
+    // sewn to down off the shoulders (GarmentCode's rand_1_022, 037, 094). It is let go
+    // when the seams stall (see `StallThen::FrictionReleased`). Between layers there is
+    // none: panels placed over each other slide into place, and the implicit step's
+    // friction between layers costs a second solve.
     let sewing_fabrics = fabrics
         .iter()
-        .map(|f| f.clone().with_drag(f.drag.max(settings.drag)).with_friction(0.0))
+        .map(|f| f.clone().with_drag(f.drag.max(settings.drag)))
         .collect();
+    let self_collision = SelfCollision {
+        friction: settings.self_collision.friction.or(Some(0.0)),
+        ..settings.self_collision
+    };
     let solver = SolverSettings {
         integrator: Integrator::ImplicitEuler,
         time_step: settings.time_step,
         gravity: Vec3::zeros(),
-        self_collision: settings.self_collision,
+        self_collision,
         ..SolverSettings::default()
     };
     let bodies = collider.clone();
@@ -202,6 +214,8 @@ pub fn sew(
     // over cloth.
     let (mut sew_on_until, mut closing_catches) = (0, 0);
     let mut stall_catches = 0;
+    // Whether the body still holds the cloth by its friction.
+    let mut gripped = true;
     // Seams being drawn shut, once the strongest pull has stalled with nothing between.
     let mut zip: Option<zip::Zip> = None;
     loop {
@@ -242,6 +256,18 @@ pub fn sew(
                 // Held open by cloth across the seams: a side is let through it, and the
                 // seams have another window before a pull at its strongest gives up.
                 stall_catches += 1;
+            } else if gripped {
+                // Held by the body's friction where the panels press on it, which a
+                // stronger pull only presses harder: let go, for them to slide round.
+                sim.scale_body_friction(0.0)?;
+                gripped = false;
+                stalls.push(stall_at(
+                    steps,
+                    seam,
+                    gap,
+                    pull_level.boost,
+                    StallThen::FrictionReleased,
+                ));
             } else if pull_level.at_most() {
                 // Held open against any pull: closed by welding where they stand, if
                 // near; if not, zipped shut when nothing lies between their sides.
