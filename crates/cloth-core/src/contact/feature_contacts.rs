@@ -112,8 +112,7 @@ pub(crate) fn detect_features(
     x: &[Vec3],
     gap_bound: impl Fn(usize) -> f64,
     max_thickness: f64,
-    cloth_friction: &[f64],
-    friction_scale: f64,
+    friction: impl Fn(Option<f64>, usize) -> f64,
     out: &mut Vec<FeatureContact>,
 ) {
     out.clear();
@@ -144,10 +143,7 @@ pub(crate) fn detect_features(
                         velocity: f.velocity,
                         thickness: f.thickness,
                         // A triangle's fabric is its corners'.
-                        friction: super::particle_contacts::scaled(
-                            f.friction.unwrap_or(cloth_friction[tri[0]]),
-                            friction_scale,
-                        ),
+                        friction: friction(f.friction, tri[0]),
                     });
                 }
             }
@@ -568,8 +564,7 @@ mod tests {
             &x,
             |_| 0.0,
             0.01,
-            &[0.3; 3000],
-            1.0,
+            |own: Option<f64>, _| own.unwrap_or(0.3),
             &mut found,
         );
         let mut all = Vec::new();

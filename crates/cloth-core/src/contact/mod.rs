@@ -135,8 +135,7 @@ impl Contacts {
             x,
             |i| particles.feature_gap_bound(i),
             self.collider.max_thickness(),
-            &particles.cloth_friction,
-            particles.friction_scale,
+            |own, i| particles.friction(own, i),
             &mut self.feature_hits,
         );
     }

@@ -185,6 +185,12 @@ impl ParticleContacts {
         }
     }
 
+    /// The Coulomb coefficient between particle `i` and a body whose own is `own` (the
+    /// particle's fabric's where it has none), times the friction scale.
+    pub(super) fn friction(&self, own: Option<f64>, i: usize) -> f64 {
+        scaled(own.unwrap_or(self.cloth_friction[i]), self.friction_scale)
+    }
+
     /// Lets the pieces `pieces` pass through the bodies (see [`PassThrough`]).
     pub fn set_pass_through(&mut self, pieces: Vec<PassThrough>) {
         for piece in &pieces {
@@ -586,7 +592,7 @@ impl ParticleContacts {
 
 /// A Coulomb coefficient `mu` times `scale`, none at a scale of zero (even where `mu` is
 /// infinite: a contact that sticks).
-pub(super) fn scaled(mu: f64, scale: f64) -> f64 {
+fn scaled(mu: f64, scale: f64) -> f64 {
     if scale == 0.0 {
         0.0
     } else {
