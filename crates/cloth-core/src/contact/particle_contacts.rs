@@ -188,7 +188,7 @@ impl ParticleContacts {
     /// The Coulomb coefficient between particle `i` and a body whose own is `own` (the
     /// particle's fabric's where it has none), times the friction scale.
     pub(super) fn friction(&self, own: Option<f64>, i: usize) -> f64 {
-        scaled(own.unwrap_or(self.cloth_friction[i]), self.friction_scale)
+        coefficient(&self.cloth_friction, self.friction_scale, own, i)
     }
 
     /// Lets the pieces `pieces` pass through the bodies (see [`PassThrough`]).
@@ -298,7 +298,7 @@ impl ParticleContacts {
             } else {
                 relative.dot(&n).max(-p.gap() / h).min(0.0)
             };
-            let friction = scaled(p.friction.unwrap_or(self.cloth_friction[i]), self.friction_scale);
+            let friction = coefficient(&self.cloth_friction, self.friction_scale, p.friction, i);
             let (kind, velocity) = if friction == f64::INFINITY {
                 s.mode = ContactMode::Stick;
                 (ConstraintKind::Fixed, p.velocity + correction * n)
@@ -590,12 +590,13 @@ impl ParticleContacts {
     }
 }
 
-/// A Coulomb coefficient `mu` times `scale`, none at a scale of zero (even where `mu` is
-/// infinite: a contact that sticks).
-fn scaled(mu: f64, scale: f64) -> f64 {
+/// The Coulomb coefficient between particle `i` and a body whose own is `own` (else the
+/// particle's fabric's, `cloth_friction[i]`), times `scale`: none at a scale of zero, even
+/// where the coefficient is infinite (a contact that sticks).
+fn coefficient(cloth_friction: &[f64], scale: f64, own: Option<f64>, i: usize) -> f64 {
     if scale == 0.0 {
         0.0
     } else {
-        scale * mu
+        scale * own.unwrap_or(cloth_friction[i])
     }
 }
