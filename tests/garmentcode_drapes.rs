@@ -167,3 +167,50 @@ fn godets_laid_corner_to_corner_part_and_are_sewn_into_their_slits() {
         held.map(|s| s.report)
     );
 }
+
+/// Sews GarmentCode's rand_1_094 at 3 cm (a top with sleeves gathered into cuffs, its
+/// bodice and sleeves placed out in front of and behind the body), its panels held at
+/// their placed height until the seams first stall by `height_slack`, or not.
+fn sew_top(height_slack: Option<f64>) -> Result<cloth::garment::sewing::Sewn, cloth::garment::GarmentError> {
+    let (scene, prepared) = common::garmentcode_scene("rand_1_094", 0.03);
+    let PreparedCloth::Garment { garment, fabrics } = prepared.cloth else {
+        panic!("a garment")
+    };
+    let settings = cloth::garment::sewing::SewingSettings {
+        height_slack,
+        ..scene.sewing_settings()
+    };
+    sew(
+        &garment,
+        &fabrics,
+        prepared.bodies.clone(),
+        &settings,
+        &Interrupt::default(),
+        |_, _, _| ControlFlow::Continue(()),
+    )
+}
+
+#[test]
+fn a_top_held_at_its_height_while_sewn_is_sewn_on_the_shoulders_with_its_sleeves_round_the_arms() {
+    // Held, its straps climb onto the shoulders (the body's top of shoulder is at 1.42 to
+    // 1.43 m) and every seam closes.
+    let held = sew_top(Some(0.01)).unwrap();
+    let top = held
+        .welded
+        .mesh
+        .positions()
+        .iter()
+        .map(|p| p.z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!((1.40..1.46).contains(&top), "top at {top} m");
+    // Not held, the bodice and sleeves swing down about their lower edges before they
+    // touch the body, the shoulder seams close under the arms' roots, and a sleeve's top
+    // seam stalls with the arm between its sides.
+    match sew_top(None) {
+        Err(cloth::garment::GarmentError::Stalled { seam, held_by, .. }) => {
+            assert!(seam.contains("sleeve"), "{seam}");
+            assert_eq!(held_by, cloth::garment::HeldOpen::Body, "{seam}");
+        }
+        other => panic!("{:?}", other.map(|s| s.report)),
+    }
+}

@@ -217,15 +217,7 @@ impl ForceModel {
         let (tris, tri_colors) = color(tris, n, |e| &e.v);
         let (hinges, hinge_colors) = color(hinges, n, |e| &e.v);
         let (seams, seam_colors) = color(seams, n, |e| &e.v);
-        let attachments: Vec<AttachmentElement> = attachments
-            .iter()
-            .map(|a| AttachmentElement {
-                v: [a.particle as u32],
-                attachment: *a,
-                slots: slots(&[a.particle]).try_into().expect("1 slot"),
-            })
-            .collect();
-        let (attachments, attachment_colors) = color(attachments, n, |e| &e.v);
+        let (attachments, attachment_colors) = attachment_elements(attachments, &matrix);
 
         let (mut masses, mut vertex_drag) = (vec![0.0; n], vec![0.0; n]);
         for e in &tris {
@@ -278,6 +270,14 @@ impl ForceModel {
         of
     }
 
+    /// Holds the cloth by `attachments` in place of those it had (their particles are in
+    /// `matrix`, the model's pattern, which has every diagonal block).
+    pub fn set_attachments(&mut self, attachments: &[Attachment], matrix: &BlockSparse) {
+        let (elements, colors) = attachment_elements(attachments, matrix);
+        self.attachment_energy = vec![0.0; elements.len()];
+        self.attachments = elements;
+        self.attachment_colors = colors;
+    }
     /// Sets how hard the seams pull (zero: not at all).
     pub fn set_seam_pull(&mut self, pull: SeamPull) {
         self.seam_pull = pull;
@@ -571,6 +571,24 @@ fn run_colored<E: Sync>(
 }
 
 /// Greedy colouring by shared vertices; returns the elements grouped by colour.
+/// The elements of `attachments`, coloured, their blocks the diagonal ones of `matrix`.
+fn attachment_elements(
+    attachments: &[Attachment],
+    matrix: &BlockSparse,
+) -> (Vec<AttachmentElement>, Vec<Range<usize>>) {
+    let elements = attachments
+        .iter()
+        .map(|a| AttachmentElement {
+            v: [a.particle as u32],
+            attachment: *a,
+            slots: [matrix
+                .slot(a.particle, a.particle)
+                .expect("every diagonal block is in the pattern") as u32],
+        })
+        .collect();
+    color(elements, matrix.n(), |e| &e.v)
+}
+
 fn color<E, const N: usize>(
     elements: Vec<E>,
     n_vertices: usize,

@@ -215,17 +215,7 @@ impl SimulationBuilder {
             self.pass_through.iter().flat_map(|p| &p.members),
             n,
         )?;
-        if let Some(a) = self.attachments.iter().find(|a| {
-            a.particle >= n
-                || !a.point.iter().all(|c| c.is_finite())
-                || (a.direction.norm() - 1.0).abs() > 1e-9
-        }) {
-            return Err(ParamError::OutOfRange {
-                name: "attachments",
-                value: a.particle as f64,
-                expected: "particles of the mesh, finite points and unit directions",
-            });
-        }
+        check_attachments(&self.attachments, n)?;
         let seam_weights = self.seam_weights.unwrap_or_else(|| vec![1.0; self.seams.len()]);
         ParamError::check(
             seam_weights.len() == self.seams.len(),
@@ -441,6 +431,15 @@ impl Simulation {
         if let Some(contacts) = self.contacts.as_mut() {
             contacts.scale_friction(scale);
         }
+        Ok(())
+    }
+
+    /// Holds the cloth by `attachments` from the next step on, in place of those given
+    /// before (to the builder or here). The sewing holds the panels at their placed height
+    /// until the seams first stall, then keeps only the garment's attached edges.
+    pub fn set_attachments(&mut self, attachments: Vec<Attachment>) -> Result<(), ParamError> {
+        check_attachments(&attachments, self.x.len())?;
+        self.model.set_attachments(&attachments, &self.matrix);
         Ok(())
     }
 
@@ -1242,4 +1241,18 @@ fn kinetic_energy(masses: &[f64], v: &[Vec3]) -> f64 {
         .zip(v)
         .map(|(m, vi)| m * vi.norm_squared())
         .sum::<f64>()
+}
+
+/// Attachments on particles of a cloth of `n`, with finite points and unit directions.
+fn check_attachments(attachments: &[Attachment], n: usize) -> Result<(), ParamError> {
+    match attachments.iter().find(|a| {
+        a.particle >= n || !a.point.iter().all(|c| c.is_finite()) || (a.direction.norm() - 1.0).abs() > 1e-9
+    }) {
+        Some(a) => Err(ParamError::OutOfRange {
+            name: "attachments",
+            value: a.particle as f64,
+            expected: "particles of the mesh, finite points and unit directions",
+        }),
+        None => Ok(()),
+    }
 }

@@ -273,6 +273,17 @@ impl Garment {
         shares
     }
 
+    /// The panel of each particle (before sewing, each is of one panel).
+    pub(crate) fn particle_panels(&self) -> Vec<usize> {
+        let mut panel = vec![0; self.mesh.vertex_count()];
+        for (t, tri) in self.mesh.triangles().iter().enumerate() {
+            for &i in tri {
+                panel[i] = self.triangle_panel[t];
+            }
+        }
+        panel
+    }
+
     /// The particles of each panel (before sewing, each is of one panel).
     pub(crate) fn panel_members(&self) -> Vec<Vec<usize>> {
         let mut members = vec![Vec::new(); self.panel_names.len()];

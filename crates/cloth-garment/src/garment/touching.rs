@@ -40,12 +40,7 @@ impl Garment {
     /// the sewing, and returns each pair of panels so touching.
     pub fn find_touching(&mut self) -> Vec<Touching> {
         let x = self.mesh.positions();
-        let mut panel = vec![usize::MAX; x.len()];
-        for (t, tri) in self.mesh.triangles().iter().enumerate() {
-            for &i in tri {
-                panel[i] = self.triangle_panel[t];
-            }
-        }
+        let panel = self.particle_panels();
         let joined = self.seam_groups();
         let cell = |p: &Vec3| (p / TOUCH).map(|c| c.floor() as i64);
         let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();

@@ -183,18 +183,12 @@ pub(super) struct Catcher {
 
 impl Catcher {
     pub(super) fn new(garment: &Garment) -> Self {
-        let n = garment.mesh.vertex_count();
         let (mut pairs, mut seam_of) = (Vec::new(), Vec::new());
         for (k, seam) in garment.seams.iter().enumerate() {
             pairs.extend(seam.pairs.iter().copied());
             seam_of.extend(std::iter::repeat_n(k, seam.pairs.len()));
         }
-        let mut panel_of = vec![0; n];
-        for (t, tri) in garment.mesh.triangles().iter().enumerate() {
-            for &i in tri {
-                panel_of[i] = garment.triangle_panel[t];
-            }
-        }
+        let panel_of = garment.particle_panels();
         Self {
             pairs,
             seam_of,

@@ -61,8 +61,9 @@ pub struct SeamStall {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StallThen {
-    /// The body's friction on the cloth was let go, for the panels to slide round it
-    /// (at the first stall; the pull is raised from the next).
+    /// The body's friction on the cloth, and the hold on the panels' placed height, were
+    /// let go, for the panels to slide round it (at the first stall; the pull is raised
+    /// from the next).
     FrictionReleased,
     /// The pull was raised (or, having torn the cloth, lowered) and sewing went on.
     Pulled,
@@ -190,7 +191,7 @@ pub fn sew(
         .seams(garment.seam_pairs())
         .seam_weights(seam_weights)
         .touching(garment.touching.clone())
-        .attachments(attachments.clone())
+        .attachments([attachments.clone(), height_holds(garment, settings.height_slack)].concat())
         .pass_through(sewing_passes(garment))
         .collider(collider)
         .build()?;
@@ -214,7 +215,8 @@ pub fn sew(
     // over cloth.
     let (mut sew_on_until, mut closing_catches) = (0, 0);
     let mut stall_catches = 0;
-    // Whether the body still holds the cloth by its friction.
+    // Whether the body still holds the cloth by its friction, and the panels at their
+    // placed height.
     let mut gripped = true;
     // Seams being drawn shut, once the strongest pull has stalled with nothing between.
     let mut zip: Option<zip::Zip> = None;
@@ -258,8 +260,10 @@ pub fn sew(
                 stall_catches += 1;
             } else if gripped {
                 // Held by the body's friction where the panels press on it, which a
-                // stronger pull only presses harder: let go, for them to slide round.
+                // stronger pull only presses harder, and at their placed height: let go,
+                // for them to slide round.
                 sim.scale_body_friction(0.0)?;
+                sim.set_attachments(attachments.clone())?;
                 gripped = false;
                 stalls.push(stall_at(
                     steps,
@@ -442,6 +446,28 @@ fn sewing_passes(garment: &Garment) -> Vec<PassThrough> {
             .collect::<Vec<_>>(),
     );
     pieces
+}
+
+/// Every particle of the panels not dressing the legs held above the level `slack`
+/// below where it was placed, if set, until the seams first stall (see
+/// [`SewingSettings::height_slack`], `StallThen::FrictionReleased`): the straps climb onto
+/// the shoulders and the sleeves close over the arms. Panels dressing the legs hang from
+/// the waist and rise to it (a tiered skirt's tiers placed below): they are not held.
+fn height_holds(garment: &Garment, slack: Option<f64>) -> Vec<Attachment> {
+    let Some(slack) = slack else {
+        return Vec::new();
+    };
+    let placed = garment.mesh.positions();
+    let members = garment.panel_members();
+    (0..members.len())
+        .filter(|&p| garment.panel_dresses[p] != Some(BodyPart::Legs))
+        .flat_map(|p| &members[p])
+        .map(|&particle| Attachment {
+            particle,
+            point: placed[particle] - slack * Vec3::z(),
+            direction: Vec3::z(),
+        })
+        .collect()
 }
 
 /// How far back past where it was placed an attached edge may go, m: GarmentCode places

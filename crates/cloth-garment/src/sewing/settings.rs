@@ -39,6 +39,14 @@ pub struct SewingSettings {
     /// thrown: without it they left at 2 m/s in the first step. 0.3 m/s by default (`None`,
     /// from Rust, turns it off).
     pub closing_speed: Option<f64>,
+    /// How far below where it was placed a panel not dressing the legs may sink until the
+    /// seams first stall, m, if set. Gravity is off, but the seams' pull swings panels
+    /// placed out round the body down about their edges sewn first: GarmentCode's tops
+    /// (rand_1_094, 048) had their shoulders and sleeves' tops 7 to 12 cm lower before
+    /// they touched the body to be held by its friction, and their sleeves then closed
+    /// round the arms' undersides with the arm between their seams' sides. 1 cm by
+    /// default (`None`, from Rust, holds nothing).
+    pub height_slack: Option<f64>,
     /// The cloth's collision with itself (a scene sets it for all its stages at once, in
     /// its `[self_collision]` table). The particles each seam pulls together, and their
     /// neighbours, are exempt until welded.
@@ -57,6 +65,7 @@ impl Default for SewingSettings {
             reach: 0.0005,
             drag: 5.0,
             closing_speed: Some(0.3),
+            height_slack: Some(0.01),
             self_collision: SelfCollision::default(),
         }
     }
@@ -78,6 +87,14 @@ impl SewingSettings {
         positive(self.reach, "sewing.reach", "a positive distance in m")?;
         if let Some(speed) = self.closing_speed {
             positive(speed, "sewing.closing_speed", "a positive speed in m/s")?;
+        }
+        if let Some(slack) = self.height_slack {
+            ParamError::check(
+                slack.is_finite() && slack >= 0.0,
+                "sewing.height_slack",
+                slack,
+                "a distance >= 0 in m",
+            )?;
         }
         ParamError::check(
             self.drag.is_finite() && self.drag >= 0.0,
