@@ -103,7 +103,8 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
         for s in &report.seam_stalls {
             let then = match s.then {
                 StallThen::FrictionReleased => {
-                    "the body's friction let go, for the panels to slide round it".to_string()
+                    "the body's friction and the hold on the panels' height let go, for the panels to slide round it"
+                        .to_string()
                 }
                 StallThen::Pulled => format!("pull at {} times full from then on", s.pull_factor),
                 StallThen::Welded => {
