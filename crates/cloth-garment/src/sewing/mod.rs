@@ -215,9 +215,6 @@ pub fn sew(
     // over cloth.
     let (mut sew_on_until, mut closing_catches) = (0, 0);
     let mut stall_catches = 0;
-    // Whether the body still holds the cloth by its friction, and the panels at their
-    // placed height.
-    let mut gripped = true;
     // Seams being drawn shut, once the strongest pull has stalled with nothing between.
     let mut zip: Option<zip::Zip> = None;
     loop {
@@ -258,13 +255,15 @@ pub fn sew(
                 // Held open by cloth across the seams: a side is let through it, and the
                 // seams have another window before a pull at its strongest gives up.
                 stall_catches += 1;
-            } else if gripped {
+            } else if !stalls
+                .iter()
+                .any(|s: &SeamStall| s.then == StallThen::FrictionReleased)
+            {
                 // Held by the body's friction where the panels press on it, which a
                 // stronger pull only presses harder, and at their placed height: let go,
                 // for them to slide round.
                 sim.scale_body_friction(0.0)?;
                 sim.set_attachments(attachments.clone())?;
-                gripped = false;
                 stalls.push(stall_at(
                     steps,
                     seam,
