@@ -435,8 +435,9 @@ class Simulation:
         every: int = 1,
         max_time_step: float | None = None,
     ) -> RestOutcome:
-        """Steps until every particle (all but ``moving_fraction`` of them) moves less
-        than ``tolerance`` m per step for ``consecutive_steps`` steps, or ``max_steps``.
+        """Steps until every particle (all but ``moving_fraction`` of them) has moved
+        less than ``tolerance`` m per step over a window of ``consecutive_steps`` steps
+        (judged from end to end, so trembling in place is rest), or ``max_steps``.
         ``callback`` sees a
         :class:`Snapshot` every ``every`` steps; returning ``False`` stops the run
         (reason ``"stopped"``); an exception it raises stops the run and propagates.

@@ -379,8 +379,9 @@ impl Simulation {
         result.map(StepStats::from).map_err(|e| sim(py, &e))
     }
 
-    /// Steps until every particle (all but `moving_fraction` of them) moves less than
-    /// `tolerance` m per step for `consecutive_steps` steps, or `max_steps`. `callback`
+    /// Steps until every particle (all but `moving_fraction` of them) has moved less than
+    /// `tolerance` m per step over a window of `consecutive_steps` steps (end to end), or
+    /// `max_steps`. `callback`
     /// sees a Snapshot every `every` steps; returning False stops the run (reason
     /// "stopped"); an exception it raises stops the run and propagates. Ctrl-C stops it
     /// too (KeyboardInterrupt, the state kept). With `max_time_step`, each step taken

@@ -735,8 +735,9 @@ impl Simulation {
         Ok(stats)
     }
 
-    /// Steps until at rest (every particle moving less than the tolerance per step for the
-    /// given number of consecutive steps) or the step limit, and says which.
+    /// Steps until at rest (every particle moved less than the tolerance per step over a
+    /// window of the given number of steps; see [`RestCriteria`]) or the step limit, and
+    /// says which.
     pub fn run_to_rest(&mut self, criteria: &RestCriteria) -> Result<RestOutcome, SimError> {
         self.run_to_rest_with(criteria, |_, _| ControlFlow::Continue(()))
     }
@@ -774,7 +775,9 @@ impl Simulation {
         let base = self.settings.time_step;
         let accuracy = 0.01 * criteria.tolerance / base;
         let allowed = (criteria.moving_fraction * self.x.len() as f64).floor() as usize;
-        let mut calm = 0u32;
+        // Where the window started, and the steps and time into it.
+        let mut anchor = self.x.clone();
+        let (mut window_steps, mut window_time) = (0u32, 0.0);
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
             last = match self.step_to(accuracy) {
@@ -797,17 +800,21 @@ impl Simulation {
                 });
             }
             let h = self.settings.time_step;
-            calm = if self.moving_particles(criteria.tolerance * h / base) <= allowed {
-                calm + 1
-            } else {
-                0
-            };
-            if calm >= criteria.consecutive_steps {
-                return Ok(RestOutcome {
-                    reason: StopReason::AtRest,
-                    steps: k,
-                    last,
-                });
+            window_steps += 1;
+            window_time += h;
+            if window_steps >= criteria.consecutive_steps && window_time >= MIN_REST_WINDOW {
+                // The tolerance is per step of the solver's length: the window's budget
+                // grows with its time as the steps do.
+                let budget = criteria.tolerance * window_time / base;
+                if moved_farther(&self.x, &anchor, budget) <= allowed {
+                    return Ok(RestOutcome {
+                        reason: StopReason::AtRest,
+                        steps: k,
+                        last,
+                    });
+                }
+                anchor.copy_from_slice(&self.x);
+                (window_steps, window_time) = (0, 0.0);
             }
             if let Some(most) = criteria.max_time_step {
                 self.settings.time_step = next_time_step(h, base, most, &last);
@@ -818,16 +825,6 @@ impl Simulation {
             steps: criteria.max_steps,
             last,
         })
-    }
-
-    /// How many particles moved `tolerance` or more over the last step.
-    fn moving_particles(&self, tolerance: f64) -> usize {
-        let t2 = tolerance * tolerance;
-        self.x
-            .iter()
-            .zip(&self.ws.x_start)
-            .filter(|(a, b)| (*a - *b).norm_squared() >= t2)
-            .count()
     }
 
     /// The step's constraints: the pins, then the active contacts (a pin wins).
@@ -1162,6 +1159,18 @@ fn next_time_step(h: f64, base: f64, most: f64, last: &StepStats) -> f64 {
     } else {
         h
     }
+}
+
+/// The shortest time a window of a run to rest spans, s (see [`RestCriteria`]).
+const MIN_REST_WINDOW: f64 = 0.5;
+
+/// How many particles are `distance` or farther from where they were.
+fn moved_farther(x: &[Vec3], before: &[Vec3], distance: f64) -> usize {
+    let d2 = distance * distance;
+    x.iter()
+        .zip(before)
+        .filter(|(a, b)| (*a - *b).norm_squared() >= d2)
+        .count()
 }
 
 /// How much a step taken whole lets the next grow.
