@@ -81,6 +81,9 @@ impl RestCriteria {
     }
 }
 
+/// The shortest time a window of a run to rest spans, s (see [`RestCriteria`]).
+pub(super) const MIN_WINDOW: f64 = 0.5;
+
 /// Why a run to rest ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -1,6 +1,7 @@
 //! The Simulation: owns the state and all scratch, and steps.
 
 use super::assembly::{ForceModel, SeamPull};
+use super::rest::MIN_WINDOW;
 use super::{
     Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
 };
@@ -305,7 +306,8 @@ impl SimulationBuilder {
                 x_new: zeros.clone(),
                 v_new: zeros.clone(),
                 x_start: zeros.clone(),
-                v_start: zeros,
+                v_start: zeros.clone(),
+                rest_anchor: zeros,
                 filter: Filter::new(n, filter_capacity),
                 pcg: Pcg::new(n),
                 pin_targets: Vec::with_capacity(pin_count),
@@ -339,6 +341,8 @@ pub(super) struct Workspace {
     /// The state at the start of the step, to take it again in shorter substeps.
     pub x_start: Vec<Vec3>,
     pub v_start: Vec<Vec3>,
+    /// Where the particles were at the start of a run to rest's window.
+    pub rest_anchor: Vec<Vec3>,
     pub filter: Filter,
     pub pcg: Pcg,
     /// Where each pin wants its particle at the end of the step (its path is asked once).
@@ -775,8 +779,8 @@ impl Simulation {
         let base = self.settings.time_step;
         let accuracy = 0.01 * criteria.tolerance / base;
         let allowed = (criteria.moving_fraction * self.x.len() as f64).floor() as usize;
-        // Where the window started, and the steps and time into it.
-        let mut anchor = self.x.clone();
+        // The window's start is in `ws.rest_anchor`; the steps and time into it.
+        self.ws.rest_anchor.copy_from_slice(&self.x);
         let (mut window_steps, mut window_time) = (0u32, 0.0);
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
@@ -802,18 +806,18 @@ impl Simulation {
             let h = self.settings.time_step;
             window_steps += 1;
             window_time += h;
-            if window_steps >= criteria.consecutive_steps && window_time >= MIN_REST_WINDOW {
+            if window_steps >= criteria.consecutive_steps && window_time >= MIN_WINDOW {
                 // The tolerance is per step of the solver's length: the window's budget
                 // grows with its time as the steps do.
                 let budget = criteria.tolerance * window_time / base;
-                if moved_farther(&self.x, &anchor, budget) <= allowed {
+                if moved_farther(&self.x, &self.ws.rest_anchor, budget) <= allowed {
                     return Ok(RestOutcome {
                         reason: StopReason::AtRest,
                         steps: k,
                         last,
                     });
                 }
-                anchor.copy_from_slice(&self.x);
+                self.ws.rest_anchor.copy_from_slice(&self.x);
                 (window_steps, window_time) = (0, 0.0);
             }
             if let Some(most) = criteria.max_time_step {
@@ -1160,9 +1164,6 @@ fn next_time_step(h: f64, base: f64, most: f64, last: &StepStats) -> f64 {
         h
     }
 }
-
-/// The shortest time a window of a run to rest spans, s (see [`RestCriteria`]).
-const MIN_REST_WINDOW: f64 = 0.5;
 
 /// How many particles are `distance` or farther from where they were.
 fn moved_farther(x: &[Vec3], before: &[Vec3], distance: f64) -> usize {
