@@ -97,6 +97,15 @@ fn the_side_nearer_the_body_is_let_through_a_layer_lying_under_the_seams_panels(
     assert_flap_let_through(&garment, &sewn, "under", Above::Under);
 }
 
+#[test]
+fn a_layer_still_passing_when_the_closed_seams_window_ends_gets_another() {
+    // Wider under `over`: still on its way through the seam 12 steps after it was found
+    // (it was welded over then, 34 crossings, before closed seams got another window for
+    // a layer still passing); through at step 44.
+    let (garment, sewn) = sew_flat(Some([-0.5, 6.5]));
+    assert_flap_let_through(&garment, &sewn, "under", Above::Under);
+}
+
 /// The flap was found caught in the seam, `passing` let through it until apart, the weld
 /// crossed nothing, and the flap ends `above` the closed seam.
 fn assert_flap_let_through(garment: &Garment, sewn: &Sewn, passing: &str, above: Above) {

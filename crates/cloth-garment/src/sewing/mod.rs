@@ -226,8 +226,10 @@ pub fn sew(
             if steps < sew_on_until && passing {
                 // Closed over a layer being let through: sewn on until it is through.
             } else if closing_catches < CLOSING_CATCHES
-                && catcher.catch(garment, &mut sim, bodies.as_ref(), steps) > 0
+                && (passing || catcher.catch(garment, &mut sim, bodies.as_ref(), steps) > 0)
             {
+                // A layer still on its way through after a window, or new cloth found
+                // across the closed seams: another window (a weld now would cross it).
                 closing_catches += 1;
                 sew_on_until = steps + stall.window;
             } else {
@@ -600,8 +602,9 @@ pub const ZIP_WELD: f64 = 1.0;
 /// across its seams at every stall and sewed 369 steps (510 s) before failing.
 const STALL_CATCHES: usize = 2;
 
-/// How many times the closed seams are looked over for cloth across them before they are
-/// welded: each time, what was found is let through and sewn on for a stall's window.
+/// How many windows closed seams are sewn on for cloth across them before they are
+/// welded: each time cloth is found across them, or is still on its way through at a
+/// window's end, it is let through for another stall's window.
 const CLOSING_CATCHES: usize = 3;
 
 /// The pull raised up to this many times its strength is a stiffer spring within the same
