@@ -10,7 +10,9 @@ use super::row_chunks::{for_each_entry, for_each_row};
 use super::transient::Transient;
 use crate::{Mat3, Vec3};
 
-#[derive(Debug, Clone)]
+/// The default is a matrix of no rows, for a pattern to be set into
+/// ([`BlockSparse::set_pattern`]).
+#[derive(Debug, Clone, Default)]
 pub struct BlockSparse {
     row_ptr: Vec<usize>,
     cols: Vec<u32>,
@@ -38,24 +40,56 @@ impl BlockSparse {
             cols.extend_from_slice(row);
             row_ptr.push(cols.len());
         }
+        Self::from_rows(row_ptr, cols)
+    }
+
+    /// The pattern whose row `r` is `cols[row_ptr[r]..row_ptr[r + 1]]`: each row sorted,
+    /// holding its diagonal, the whole symmetric; values start at zero.
+    fn from_rows(row_ptr: Vec<usize>, cols: Vec<u32>) -> Self {
         let mut m = Self {
-            transient: Transient::new(n),
-            blocks: vec![Mat3::zeros(); cols.len()],
-            diag: vec![0; n],
-            transpose: vec![0; cols.len()],
             row_ptr,
             cols,
+            ..Self::default()
         };
+        m.index_pattern();
+        m
+    }
+
+    /// Makes this matrix's pattern `row_ptr` and `cols` (as [`BlockSparse::from_pairs`]
+    /// makes it), values zero and no transient coupling, in its own storage: it allocates
+    /// only to grow.
+    pub(super) fn set_pattern(&mut self, row_ptr: &[usize], cols: &[u32]) {
+        self.row_ptr.clear();
+        self.row_ptr.extend_from_slice(row_ptr);
+        self.cols.clear();
+        self.cols.extend_from_slice(cols);
+        self.index_pattern();
+    }
+
+    /// Sizes the values, the diagonal and the transposition of the pattern set in
+    /// `row_ptr` and `cols`.
+    fn index_pattern(&mut self) {
+        let n = self.row_ptr.len() - 1;
+        self.blocks.clear();
+        self.blocks.resize(self.cols.len(), Mat3::zeros());
+        self.diag.clear();
+        self.diag.resize(n, 0);
+        self.transpose.clear();
+        self.transpose.resize(self.cols.len(), 0);
+        if self.transient.size() == n {
+            self.transient.clear();
+        } else {
+            self.transient = Transient::new(n);
+        }
         for r in 0..n {
-            for s in m.row_ptr[r]..m.row_ptr[r + 1] {
-                let c = m.cols[s] as usize;
-                m.transpose[s] = m.slot(c, r).expect("pattern is symmetric") as u32;
+            for s in self.row_ptr[r]..self.row_ptr[r + 1] {
+                let c = self.cols[s] as usize;
+                self.transpose[s] = self.slot(c, r).expect("pattern is symmetric") as u32;
                 if c == r {
-                    m.diag[r] = s as u32;
+                    self.diag[r] = s as u32;
                 }
             }
         }
-        m
     }
 
     /// Number of block rows.
@@ -175,9 +209,9 @@ impl BlockSparse {
 
     /// Adds a transient coupling: `G_a^T K G_b` at every pair of its `terms` `(i_a, G_a)`
     /// (a spring `K` on `sum_a G_a x_{i_a}`), kept outside the fixed pattern's values even
-    /// where the pattern has the block: the fixed values stay the mesh's, which the
-    /// multigrid hierarchy is made for, and the couplings are carried to its coarse levels
-    /// as couplings. Takes effect at [`BlockSparse::finish_transient`].
+    /// where the pattern has the block: the fixed pattern stays the mesh's, which the
+    /// multigrid aggregates along, and the multigrid folds the couplings into a copy of it
+    /// for its coarse levels. Takes effect at [`BlockSparse::finish_transient`].
     pub fn add_coupling(&mut self, stiffness: Mat3, terms: impl IntoIterator<Item = (usize, Mat3)>) {
         self.transient.add(stiffness, terms);
     }
@@ -200,6 +234,42 @@ impl BlockSparse {
     /// The transient couplings: (row, column, block) of each stored block.
     pub fn transient_blocks(&self) -> impl Iterator<Item = (usize, usize, &Mat3)> + '_ {
         self.transient.blocks()
+    }
+
+    /// Appends to `out` the columns of row `r` in the pattern and in the transient
+    /// couplings, sorted, each once.
+    pub(super) fn union_row(&self, r: usize, out: &mut Vec<u32>) {
+        let fixed = &self.cols[self.row(r)];
+        let mut coupled = self.transient.row_columns(r).peekable();
+        for &c in fixed {
+            while let Some(t) = coupled.next_if(|&t| t < c) {
+                out.push(t);
+            }
+            coupled.next_if_eq(&c);
+            out.push(c);
+        }
+        out.extend(coupled);
+    }
+
+    /// Sets every block to `a`'s, its transient couplings added in; this pattern must hold
+    /// both of `a`'s (see [`BlockSparse::union_row`]). In parallel when `parallel`.
+    pub(super) fn set_folded(&mut self, a: &BlockSparse, parallel: bool) {
+        let cols = &self.cols;
+        for_each_row(&self.row_ptr, &mut self.blocks, parallel, |r, first, row| {
+            let row_cols = &cols[first..first + row.len()];
+            let at = |c: u32| {
+                row_cols
+                    .binary_search(&c)
+                    .expect("the pattern holds the couplings")
+            };
+            row.fill(Mat3::zeros());
+            for s in a.row(r) {
+                row[at(a.cols[s])] += a.blocks[s];
+            }
+            for (c, block) in a.transient.row_blocks(r) {
+                row[at(c)] += block;
+            }
+        });
     }
 
     /// Whether transient couplings are set.

@@ -1,10 +1,9 @@
 //! Couplings of a [`super::BlockSparse`] outside its fixed pattern, set anew each step: the
 //! cloth's contacts with itself join particles the mesh does not. Each coupling is a
 //! symmetric 3x3 `K` acting on a combination of a few nodes, `sum_k G_k x_{i_k}`, so it
-//! adds `G_a^T K G_b` at every pair of its nodes `(i_a, i_b)`. Kept as such, a coupling is
-//! carried to a multigrid's coarse levels by the prolongator (`G_k P`), and gathered into
-//! compressed rows (sorted by row and column, duplicates summed) for the products. Every
-//! buffer is reused.
+//! adds `G_a^T K G_b` at every pair of its nodes `(i_a, i_b)`, gathered into compressed
+//! rows (sorted by row and column, duplicates summed) for the products and for folding
+//! into a pattern that holds them (see `linalg::folded`). Every buffer is reused.
 
 use crate::{Mat3, Vec3};
 
@@ -34,6 +33,11 @@ impl Transient {
             term_start: vec![0],
             ..Self::default()
         }
+    }
+
+    /// Rows of the matrix.
+    pub fn size(&self) -> usize {
+        self.n
     }
 
     pub fn clear(&mut self) {
@@ -134,6 +138,17 @@ impl Transient {
             Some(&[a, b]) => a..b,
             _ => 0..0,
         }
+    }
+
+    /// Row `r`'s gathered columns, sorted.
+    pub fn row_columns(&self, r: usize) -> impl Iterator<Item = u32> + '_ {
+        self.cols[self.row(r)].iter().copied()
+    }
+
+    /// Row `r`'s gathered blocks with their columns.
+    pub fn row_blocks(&self, r: usize) -> impl Iterator<Item = (u32, &Mat3)> + '_ {
+        let range = self.row(r);
+        self.cols[range.clone()].iter().copied().zip(&self.blocks[range])
     }
 
     pub fn row_product(&self, r: usize, x: &[Vec3]) -> Vec3 {

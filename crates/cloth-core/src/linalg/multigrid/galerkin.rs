@@ -6,10 +6,11 @@ use crate::linalg::row_chunks::for_each_row;
 use crate::linalg::BlockSparse;
 use crate::Mat3;
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(super) struct Galerkin {
-    /// `A P` by fine rows.
+    /// `A P` by fine rows: row starts, columns, values.
     ap_ptr: Vec<usize>,
+    ap_cols: Vec<u32>,
     ap: Vec<Mat3>,
     /// For fine row `i`, in the order `for s in A.row(i), for q in P.row(col(s))`: the
     /// slot of `AP` the term `A[s] P[q]` adds to.
@@ -19,17 +20,24 @@ pub(super) struct Galerkin {
     /// the slot of `A_c` the term `P[p]^T AP[t]` adds to.
     coarse_terms_ptr: Vec<usize>,
     coarse_terms: Vec<u32>,
+    /// Scratch of the plan: one row's columns, and the coarse matrix's pattern.
+    row: Vec<u32>,
+    coarse_ptr: Vec<usize>,
+    coarse_cols: Vec<u32>,
 }
 
 impl Galerkin {
-    /// The product's plan and the coarse matrix's pattern (values zero).
-    pub fn plan(a: &BlockSparse, p: &Prolongator) -> (Self, BlockSparse) {
+    /// Plans the product for `a` and `p` and sets the coarse matrix's pattern (values
+    /// zero), in the storage of both, which they allocate only to grow.
+    pub fn plan(&mut self, a: &BlockSparse, p: &Prolongator, coarse: &mut BlockSparse) {
         let n = a.n();
-        let mut ap_ptr = vec![0usize];
-        let mut ap_cols: Vec<u32> = Vec::new();
-        let mut ap_terms_ptr = vec![0usize];
-        let mut ap_terms = Vec::new();
-        let mut row: Vec<u32> = Vec::new();
+        let row = &mut self.row;
+        self.ap_ptr.clear();
+        self.ap_ptr.push(0);
+        self.ap_cols.clear();
+        self.ap_terms_ptr.clear();
+        self.ap_terms_ptr.push(0);
+        self.ap_terms.clear();
         for i in 0..n {
             row.clear();
             for s in a.row(i) {
@@ -37,56 +45,50 @@ impl Galerkin {
             }
             row.sort_unstable();
             row.dedup();
-            let base = ap_cols.len();
+            let base = self.ap_cols.len();
             for s in a.row(i) {
                 for q in p.row(a.col_of(s)) {
                     let k = row.binary_search(&(p.col_of(q) as u32)).expect("in the row");
-                    ap_terms.push((base + k) as u32);
+                    self.ap_terms.push((base + k) as u32);
                 }
             }
-            ap_terms_ptr.push(ap_terms.len());
-            ap_cols.extend_from_slice(&row);
-            ap_ptr.push(ap_cols.len());
+            self.ap_terms_ptr.push(self.ap_terms.len());
+            self.ap_cols.extend_from_slice(row);
+            self.ap_ptr.push(self.ap_cols.len());
         }
+        self.ap.clear();
+        self.ap.resize(self.ap_cols.len(), Mat3::zeros());
 
-        let nc = p.coarse();
-        let mut pairs = Vec::new();
-        for i in 0..n {
-            for q in p.row(i) {
-                let a_c = p.col_of(q);
-                for t in ap_ptr[i]..ap_ptr[i + 1] {
-                    let b_c = ap_cols[t] as usize;
-                    if a_c <= b_c {
-                        pairs.push((a_c, b_c));
-                    }
-                }
-            }
-        }
-        pairs.sort_unstable();
-        pairs.dedup();
-        let coarse = BlockSparse::from_pairs(nc, pairs);
-        let mut coarse_terms_ptr = vec![0usize];
-        let mut coarse_terms = Vec::new();
-        for a_c in 0..nc {
+        // Coarse row `a` holds the columns of `AP`'s rows at the fine nodes `P` takes `a`
+        // to: symmetric, as `A`'s pattern is, and with its diagonal.
+        let (ap_ptr, ap_cols) = (&self.ap_ptr, &self.ap_cols);
+        self.coarse_ptr.clear();
+        self.coarse_ptr.push(0);
+        self.coarse_cols.clear();
+        for a_c in 0..p.coarse() {
+            row.clear();
             for (i, _) in p.column(a_c) {
-                for t in ap_ptr[i]..ap_ptr[i + 1] {
-                    let slot = coarse.slot(a_c, ap_cols[t] as usize).expect("in the pattern");
-                    coarse_terms.push(slot as u32);
+                row.extend_from_slice(&ap_cols[ap_ptr[i]..ap_ptr[i + 1]]);
+            }
+            row.sort_unstable();
+            row.dedup();
+            self.coarse_cols.extend_from_slice(row);
+            self.coarse_ptr.push(self.coarse_cols.len());
+        }
+        coarse.set_pattern(&self.coarse_ptr, &self.coarse_cols);
+
+        self.coarse_terms_ptr.clear();
+        self.coarse_terms_ptr.push(0);
+        self.coarse_terms.clear();
+        for a_c in 0..p.coarse() {
+            for (i, _) in p.column(a_c) {
+                for &b_c in &ap_cols[ap_ptr[i]..ap_ptr[i + 1]] {
+                    let slot = coarse.slot(a_c, b_c as usize).expect("in the pattern");
+                    self.coarse_terms.push(slot as u32);
                 }
             }
-            coarse_terms_ptr.push(coarse_terms.len());
+            self.coarse_terms_ptr.push(self.coarse_terms.len());
         }
-        (
-            Self {
-                ap: vec![Mat3::zeros(); ap_cols.len()],
-                ap_ptr,
-                ap_terms_ptr,
-                ap_terms,
-                coarse_terms_ptr,
-                coarse_terms,
-            },
-            coarse,
-        )
     }
 
     /// `coarse = P^T a P`, symmetrised against rounding.

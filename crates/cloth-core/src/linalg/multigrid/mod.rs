@@ -5,10 +5,14 @@
 //! plain Galerkin products `P^T (S A S) P`.
 //!
 //! One V-cycle with damped block-Jacobi smoothing is the preconditioner of PCG. The
-//! aggregates, the patterns and the plan of every product are made once per matrix
-//! pattern; a [`Multigrid::build`] recomputes the values.
+//! aggregates of every level are made once per matrix pattern, along the mesh's
+//! couplings alone; a [`Multigrid::build`] recomputes the values. A matrix's transient
+//! couplings (the cloth's contacts with itself) are folded into its pattern for the
+//! smoothed prolongator and the coarse matrices (see [`folded`]); the patterns and plans
+//! that follow are made again, in their own storage, when the couplings join other pairs.
 
 mod aggregation;
+mod folded;
 mod galerkin;
 mod prolongator;
 mod spectrum;
@@ -17,6 +21,7 @@ mod tentative;
 use super::{inverse_diagonal, BlockSparse, Filter};
 use crate::{Mat3, Vec3};
 use aggregation::{aggregate, Aggregates};
+use folded::Folded;
 use galerkin::Galerkin;
 use nalgebra::{DMatrix, DVector};
 use prolongator::Prolongator;
@@ -72,12 +77,14 @@ pub struct Multigrid {
     factor: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
     /// Near-null space of the finest level: each particle's free translations.
     fine_basis: Vec<Mat3>,
-    /// The finest matrix's pattern (row starts, columns) the hierarchy was made for.
-    fine_pattern: (Vec<usize>, Vec<u32>),
+    /// The finest matrix's own pattern (row starts, columns), the aggregates' ...
+    mesh_pattern: (Vec<usize>, Vec<u32>),
+    /// ... and whether the prolongators and coarse patterns are made for it, or for it
+    /// with the transient couplings of the last build folded in.
+    folded_in: bool,
+    folded: Folded,
     scratch: Mutex<(Vec<Scratch>, DVector<f64>)>,
     spectrum: Spectrum,
-    /// Scratch of one coupling's coarse terms.
-    coupling_terms: Vec<(usize, Mat3)>,
 }
 
 /// `y_i = g(i, (A x)_i)`, or with `filter`, `g(i, (S A x)_i)`: the filtered
@@ -99,9 +106,14 @@ fn product_then(
 impl Multigrid {
     /// The hierarchy's structure for matrices with `a`'s pattern. The finest level is
     /// aggregated along `a`'s strong couplings; the coarse levels, whose values are not
-    /// known yet, along all of theirs.
+    /// known yet, along all of theirs. Transient couplings, which join other pairs at
+    /// every step, are not aggregated along: aggregates that join layers across their
+    /// contacts move them together in every coarse correction, where pressed layers
+    /// still slide past each other (two sheets pressed together took 146 iterations to
+    /// 1e-6 so, 76 with the finest level aggregated along each sheet, 52 with every level,
+    /// as many as apart: `tests/multigrid.rs`).
     pub fn new(a: &BlockSparse) -> Self {
-        let mut levels = Vec::new();
+        let mut levels: Vec<Level> = Vec::new();
         let mut coarse: Vec<BlockSparse> = Vec::new();
         let mut scratch = Vec::new();
         let mut n = a.n();
@@ -110,21 +122,23 @@ impl Multigrid {
             let strength = if levels.is_empty() { STRENGTH } else { 0.0 };
             let aggregates = aggregate(m, strength);
             debug_assert!(2 * aggregates.count <= n + 1, "aggregation halves a level");
-            let p = Prolongator::pattern(m, &aggregates);
-            let (galerkin, next) = Galerkin::plan(m, &p);
+            let mut level = Level {
+                aggregates,
+                p: Prolongator::default(),
+                galerkin: Galerkin::default(),
+                tentative: Tentative::default(),
+                inv_diag: vec![Mat3::identity(); n],
+                omega: 0.0,
+            };
+            let mut next = BlockSparse::default();
+            level.p.set_pattern(m, &level.aggregates);
+            level.galerkin.plan(m, &level.p, &mut next);
             scratch.push(Scratch {
                 b: vec![Vec3::zeros(); n],
                 x: vec![Vec3::zeros(); n],
                 r: vec![Vec3::zeros(); n],
             });
-            levels.push(Level {
-                aggregates,
-                p,
-                galerkin,
-                tentative: Tentative::default(),
-                inv_diag: vec![Mat3::identity(); n],
-                omega: 0.0,
-            });
+            levels.push(level);
             n = next.n();
             coarse.push(next);
         }
@@ -138,16 +152,30 @@ impl Multigrid {
             coarse,
             factor: None,
             fine_basis: vec![Mat3::identity(); a.n()],
-            fine_pattern: (a.row_starts().to_vec(), a.columns().to_vec()),
+            mesh_pattern: (a.row_starts().to_vec(), a.columns().to_vec()),
+            folded_in: false,
+            folded: Folded::default(),
             spectrum: Spectrum::new(a.n()),
-            coupling_terms: Vec::new(),
             scratch: Mutex::new((scratch, DVector::zeros(3 * n))),
         }
     }
 
-    /// Whether this hierarchy was made for `a`'s pattern.
+    /// Whether this hierarchy was made for `a`'s pattern (its own, transient couplings
+    /// aside).
     pub fn fits(&self, a: &BlockSparse) -> bool {
-        self.fine_pattern.0 == a.row_starts() && self.fine_pattern.1 == a.columns()
+        self.mesh_pattern.0 == a.row_starts() && self.mesh_pattern.1 == a.columns()
+    }
+
+    /// Makes every prolongator's pattern, product plan and coarse pattern for the finest
+    /// matrix `fine`, the aggregates kept.
+    fn set_patterns(&mut self, fine: &BlockSparse) {
+        for l in 0..self.levels.len() {
+            let (done, rest) = self.coarse.split_at_mut(l);
+            let m = if l == 0 { fine } else { &done[l - 1] };
+            let level = &mut self.levels[l];
+            level.p.set_pattern(m, &level.aggregates);
+            level.galerkin.plan(m, &level.p, &mut rest[0]);
+        }
     }
 
     /// Number of levels, the coarsest included.
@@ -157,9 +185,45 @@ impl Multigrid {
 
     /// Computes every level's values for the filtered matrix `S A S + I - S`.
     pub fn build(&mut self, a: &BlockSparse, filter: &Filter, parallel: bool) -> Result<(), String> {
+        // Taken out for the build, so the folded matrix can be read while the levels are
+        // written.
+        let mut folded = std::mem::take(&mut self.folded);
+        let result = self.build_folded(a, &mut folded, filter, parallel);
+        self.folded = folded;
+        result
+    }
+
+    fn build_folded(
+        &mut self,
+        a: &BlockSparse,
+        folded: &mut Folded,
+        filter: &Filter,
+        parallel: bool,
+    ) -> Result<(), String> {
+        let fine = if a.has_transient() {
+            let (fine, changed) = folded.fold(a, parallel);
+            if changed || !self.folded_in {
+                self.set_patterns(fine);
+            }
+            self.folded_in = true;
+            fine
+        } else {
+            if self.folded_in {
+                self.set_patterns(a);
+            }
+            self.folded_in = false;
+            a
+        };
         for l in 0..self.levels.len() {
             let (done, rest) = self.coarse.split_at_mut(l);
-            let m = if l == 0 { a } else { &done[l - 1] };
+            // The smoother's diagonal is `a`'s, which bounds its transient couplings from
+            // above (on their own diagonal blocks, Jacobi does poorly); its products are
+            // the same operator as the folded matrix's.
+            let (m, smoother) = if l == 0 {
+                (fine, a)
+            } else {
+                (&done[l - 1], &done[l - 1])
+            };
             let f = (l == 0).then_some(filter);
             let parallel = parallel && m.nnz_blocks() >= PARALLEL_BLOCKS;
             let (above, below) = self.levels.split_at_mut(l);
@@ -173,9 +237,9 @@ impl Multigrid {
                     &self.fine_basis
                 }
             };
-            inverse_diagonal(m, f, &mut level.inv_diag, parallel)
+            inverse_diagonal(smoother, f, &mut level.inv_diag, parallel)
                 .map_err(|i| format!("multigrid level {l}: diagonal block {i} is not positive definite"))?;
-            level.omega = JACOBI_WEIGHT / self.spectrum.radius(m, f, &level.inv_diag, parallel);
+            level.omega = JACOBI_WEIGHT / self.spectrum.radius(smoother, f, &level.inv_diag, parallel);
             level.tentative.build(basis, &level.aggregates);
             smooth_prolongator(level, m, f, parallel);
             level.galerkin.multiply(m, &level.p, &mut rest[0], parallel);
@@ -183,25 +247,18 @@ impl Multigrid {
                 let d = rest[0].diag_slot(c);
                 rest[0].blocks_mut()[d] += empty;
             }
-            coarsen_transient(
-                m,
-                &level.tentative.blocks,
-                &level.aggregates.of_node,
-                &mut rest[0],
-                &mut self.coupling_terms,
-            );
         }
         // The factor is made in the storage of the last one.
         let mut dense = match self.factor.take() {
             Some(factor) => factor.unpack(),
             None => {
-                let n = 3 * self.coarse.last().unwrap_or(a).n();
+                let n = 3 * self.coarse.last().unwrap_or(fine).n();
                 DMatrix::zeros(n, n)
             }
         };
         match self.coarse.last() {
             Some(m) => dense_into(m, None, &mut dense),
-            None => dense_into(a, Some(filter), &mut dense),
+            None => dense_into(fine, Some(filter), &mut dense),
         }
         self.factor = Some(
             nalgebra::Cholesky::new(dense)
@@ -284,38 +341,6 @@ impl Multigrid {
     }
 }
 
-/// The transient couplings of `m` (the cloth's contacts with itself, outside the mesh's
-/// pattern) carried to the coarse matrix through the tentative prolongator `T`: a
-/// coupling on `sum_k G_k x_k` becomes one on `sum_k G_k T_k x_{agg(k)}`, each term going
-/// to its particle's own aggregate. The smoothed prolongator would spread every coupling
-/// over the neighbours' aggregates too, and its terms would multiply level by level (a
-/// coupling's blocks grow as the square of its terms): tried from the finest level only,
-/// it cost several times the solve and saved no iterations.
-fn coarsen_transient(
-    m: &BlockSparse,
-    tentative: &[Mat3],
-    of_node: &[u32],
-    coarse: &mut BlockSparse,
-    terms: &mut Vec<(usize, Mat3)>,
-) {
-    coarse.clear_transient();
-    if !m.has_transient() {
-        return;
-    }
-    for (k, fine) in m.couplings() {
-        terms.clear();
-        for &(i, g) in fine {
-            let (a, block) = (of_node[i as usize] as usize, g * tentative[i as usize]);
-            match terms.iter_mut().find(|(b, _)| *b == a) {
-                Some((_, sum)) => *sum += block,
-                None => terms.push((a, block)),
-            }
-        }
-        coarse.add_coupling(*k, terms.iter().copied());
-    }
-    coarse.finish_transient();
-}
-
 /// `P = (I - w D^-1 A) T`, `T` the tentative prolongator; on the finest level the rows
 /// are projected by the filter, so every correction obeys the constraints.
 fn smooth_prolongator(level: &mut Level, m: &BlockSparse, f: Option<&Filter>, parallel: bool) {
@@ -352,9 +377,5 @@ fn dense_into(m: &BlockSparse, filter: Option<&Filter>, out: &mut DMatrix<f64>) 
         }
         let mut diag = out.fixed_view_mut::<3, 3>(3 * r, 3 * r);
         diag += Mat3::identity() - free(r);
-    }
-    for (r, c, b) in m.transient_blocks() {
-        let mut block = out.fixed_view_mut::<3, 3>(3 * r, 3 * c);
-        block += free(r) * b * free(c);
     }
 }

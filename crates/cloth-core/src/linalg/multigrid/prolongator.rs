@@ -7,7 +7,7 @@ use crate::linalg::row_chunks::{for_each_entry, for_each_row};
 use crate::linalg::BlockSparse;
 use crate::{Mat3, Vec3};
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(super) struct Prolongator {
     coarse: usize,
     row_ptr: Vec<usize>,
@@ -20,55 +20,55 @@ pub(super) struct Prolongator {
     col_rows: Vec<u32>,
     /// ... and a copy of its blocks, so `P^T r` streams through memory as `P x` does.
     col_blocks: Vec<Mat3>,
+    /// Scratch of the pattern: one row's columns, and each column's next free place.
+    row: Vec<u32>,
+    fill: Vec<usize>,
 }
 
 impl Prolongator {
-    /// The pattern of the smoothed prolongator `(I - w D^-1 A) P_tentative`: fine node `i`
-    /// reaches the aggregates of its neighbours in `a`.
-    pub fn pattern(a: &BlockSparse, aggregates: &Aggregates) -> Self {
+    /// Makes the pattern of the smoothed prolongator `(I - w D^-1 A) P_tentative`, values
+    /// zero: fine node `i` reaches the aggregates of its neighbours in `a`. In this
+    /// prolongator's storage, which it allocates only to grow.
+    pub fn set_pattern(&mut self, a: &BlockSparse, aggregates: &Aggregates) {
         let n = a.n();
-        let mut row_ptr = Vec::with_capacity(n + 1);
-        let mut cols = Vec::new();
-        row_ptr.push(0);
-        let mut row = Vec::new();
+        self.row_ptr.clear();
+        self.cols.clear();
+        self.row_ptr.push(0);
         for i in 0..n {
-            row.clear();
-            row.extend(a.row(i).map(|s| aggregates.of_node[a.col_of(s)]));
-            row.sort_unstable();
-            row.dedup();
-            cols.extend_from_slice(&row);
-            row_ptr.push(cols.len());
+            self.row.clear();
+            self.row.extend(a.row(i).map(|s| aggregates.of_node[a.col_of(s)]));
+            self.row.sort_unstable();
+            self.row.dedup();
+            self.cols.extend_from_slice(&self.row);
+            self.row_ptr.push(self.cols.len());
         }
         let coarse = aggregates.count;
-        let mut col_count = vec![0usize; coarse + 1];
-        for &c in &cols {
-            col_count[c as usize + 1] += 1;
+        self.coarse = coarse;
+        self.col_ptr.clear();
+        self.col_ptr.resize(coarse + 1, 0);
+        for &c in &self.cols {
+            self.col_ptr[c as usize + 1] += 1;
         }
-        let mut col_ptr = col_count;
         for k in 0..coarse {
-            col_ptr[k + 1] += col_ptr[k];
+            self.col_ptr[k + 1] += self.col_ptr[k];
         }
-        let mut fill = col_ptr.clone();
-        let mut col_slots = vec![0u32; cols.len()];
-        let mut col_rows = vec![0u32; cols.len()];
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.col_ptr);
+        let nnz = self.cols.len();
+        self.col_slots.resize(nnz, 0);
+        self.col_rows.resize(nnz, 0);
         for i in 0..n {
-            for s in row_ptr[i]..row_ptr[i + 1] {
-                let c = cols[s] as usize;
-                col_slots[fill[c]] = s as u32;
-                col_rows[fill[c]] = i as u32;
-                fill[c] += 1;
+            for s in self.row_ptr[i]..self.row_ptr[i + 1] {
+                let c = self.cols[s] as usize;
+                self.col_slots[self.fill[c]] = s as u32;
+                self.col_rows[self.fill[c]] = i as u32;
+                self.fill[c] += 1;
             }
         }
-        Self {
-            coarse,
-            blocks: vec![Mat3::zeros(); cols.len()],
-            col_blocks: vec![Mat3::zeros(); cols.len()],
-            row_ptr,
-            cols,
-            col_ptr,
-            col_slots,
-            col_rows,
-        }
+        self.blocks.clear();
+        self.blocks.resize(nnz, Mat3::zeros());
+        self.col_blocks.clear();
+        self.col_blocks.resize(nnz, Mat3::zeros());
     }
 
     pub fn coarse(&self) -> usize {
