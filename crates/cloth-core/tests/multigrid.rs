@@ -264,14 +264,14 @@ fn a_rebuilt_hierarchy_is_the_one_built_afresh() {
     assert_eq!(run(&reused, &second, &filter), run(&fresh, &second, &filter));
 }
 
-/// `a` with a contact between each of `count` particles from `first` on and a triangle at
-/// the far end of the sheet, as the cloth's contacts with itself join particles far
-/// apart in the mesh.
-fn with_contacts(a: &BlockSparse, first: usize, count: usize) -> BlockSparse {
+/// `a` with a contact of `stiffness` between each of `count` particles from `first` on and
+/// a triangle at the far end of the sheet, as the cloth's contacts with itself join
+/// particles far apart in the mesh.
+fn with_contacts(a: &BlockSparse, first: usize, count: usize, stiffness: f64) -> BlockSparse {
     let mut a = a.clone();
     let n = a.n();
-    let spring =
-        50.0 * Vec3::new(0.2, 1.0, 0.1).normalize() * Vec3::new(0.2, 1.0, 0.1).normalize().transpose();
+    let normal = Vec3::new(0.2, 1.0, 0.1).normalize();
+    let spring = stiffness * normal * normal.transpose();
     for k in first..first + count {
         let far = n - 1 - 2 * (k - first);
         let terms = [
@@ -299,33 +299,27 @@ fn a_hierarchy_rebuilt_for_other_contacts_is_the_one_built_afresh() {
         m.apply(a, &filter, &rhs, &mut x, false);
         x
     };
-    // Contacts on some pairs, then on others, then none: each time the same as a
-    // hierarchy built for that matrix alone (the patterns are made again in place).
+    // Contacts on some pairs, then on others, then none, then on the last pairs again
+    // and on the same pairs stiffer: each time the same as a hierarchy built for that
+    // matrix alone (the patterns are made again in place when the pairs change). That the
+    // contacts reach the coarse levels at all, the pressed layers below show: without
+    // them there, 123 and 125 iterations against 51 and 52 apart.
     let mut reused = Multigrid::new(&first);
     reused
-        .build(&with_contacts(&first, 3, 20), &filter, false)
+        .build(&with_contacts(&first, 3, 20, 50.0), &filter, false)
         .expect("build");
     for next in [
-        with_contacts(&second, 30, 40),
-        with_contacts(&second, 0, 10),
+        with_contacts(&second, 30, 40, 50.0),
+        with_contacts(&second, 0, 10, 50.0),
         second.clone(),
+        with_contacts(&second, 0, 10, 50.0),
+        with_contacts(&second, 0, 10, 200.0),
     ] {
         reused.build(&next, &filter, false).expect("rebuild");
         let mut fresh = Multigrid::new(&second);
         fresh.build(&next, &filter, false).expect("build");
         let (x, y) = (run(&reused, &next), run(&fresh, &next));
         assert_eq!(x, y);
-        // And the contacts reach the coarse levels: without them the cycle differs.
-        if next.has_transient() {
-            let mut apart = Multigrid::new(&second);
-            apart.build(&second, &filter, false).expect("build");
-            let z = run(&apart, &next);
-            let gap = x.iter().zip(&z).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
-            assert!(
-                gap > 1e-6 * x.iter().map(|p| p.norm()).fold(0.0, f64::max),
-                "{gap}"
-            );
-        }
     }
 }
 

@@ -89,6 +89,10 @@ impl BlockSparse {
                     self.diag[r] = s as u32;
                 }
             }
+            debug_assert_eq!(
+                self.cols[self.diag[r] as usize] as usize, r,
+                "row {r} holds its diagonal"
+            );
         }
     }
 
@@ -216,11 +220,6 @@ impl BlockSparse {
         self.transient.add(stiffness, terms);
     }
 
-    /// The transient couplings, each `K` with its terms.
-    pub fn couplings(&self) -> impl Iterator<Item = (&Mat3, &[(u32, Mat3)])> + '_ {
-        self.transient.couplings()
-    }
-
     /// Drops the transient couplings (a reset does too).
     pub fn clear_transient(&mut self) {
         self.transient.clear();
@@ -229,11 +228,6 @@ impl BlockSparse {
     /// Gathers the transient couplings into rows, for the products.
     pub fn finish_transient(&mut self) {
         self.transient.finish();
-    }
-
-    /// The transient couplings: (row, column, block) of each stored block.
-    pub fn transient_blocks(&self) -> impl Iterator<Item = (usize, usize, &Mat3)> + '_ {
-        self.transient.blocks()
     }
 
     /// Appends to `out` the columns of row `r` in the pattern and in the transient

@@ -6,7 +6,9 @@
 //! slow motions. Folded in, the smoothed prolongator and the coarse matrices see them as
 //! they see the mesh's couplings. (GarmentCode's rand_1_089 in its drape, 23,927
 //! particles pressed by about 10,000 contacts: gravity's pull solved to 1e-6 in 1,121
-//! iterations kept apart, 338 folded in; the step's own solve to 1e-3 in 123 and 68.)
+//! iterations kept apart, 338 folded in with the finest level alone aggregated along the
+//! mesh; the step's own solve to 1e-3 in 123 and 68. Every level aggregated so, as now,
+//! its whole drape took 109 iterations a step against 227 kept apart.)
 //!
 //! The pattern is made again, in the same storage, only when the couplings join other
 //! pairs than at the last fold; within a step's solves only the values change.

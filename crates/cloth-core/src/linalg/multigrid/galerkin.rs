@@ -60,7 +60,8 @@ impl Galerkin {
         self.ap.resize(self.ap_cols.len(), Mat3::zeros());
 
         // Coarse row `a` holds the columns of `AP`'s rows at the fine nodes `P` takes `a`
-        // to: symmetric, as `A`'s pattern is, and with its diagonal.
+        // to: symmetric, as `A`'s pattern is, and with its diagonal, as every aggregate
+        // holds a node `i` and `AP` has `(i, a)` through `A`'s diagonal and `P`'s `(i, a)`.
         let (ap_ptr, ap_cols) = (&self.ap_ptr, &self.ap_cols);
         self.coarse_ptr.clear();
         self.coarse_ptr.push(0);

@@ -55,7 +55,7 @@ struct Level {
     galerkin: Galerkin,
     tentative: Tentative,
     inv_diag: Vec<Mat3>,
-    /// Jacobi damping of the smoother and of the prolongator, `4 / (3 rho(D^-1 A))`.
+    /// Jacobi damping of the smoother and of the prolongator, `JACOBI_WEIGHT / rho(D^-1 A)`.
     omega: f64,
 }
 
@@ -201,7 +201,7 @@ impl Multigrid {
         parallel: bool,
     ) -> Result<(), String> {
         let fine = if a.has_transient() {
-            let (fine, changed) = folded.fold(a, parallel);
+            let (fine, changed) = folded.fold(a, parallel && a.nnz_blocks() >= PARALLEL_BLOCKS);
             if changed || !self.folded_in {
                 self.set_patterns(fine);
             }
