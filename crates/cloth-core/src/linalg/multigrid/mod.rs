@@ -200,20 +200,16 @@ impl Multigrid {
         filter: &Filter,
         parallel: bool,
     ) -> Result<(), String> {
-        let fine = if a.has_transient() {
-            let (fine, changed) = folded.fold(a, parallel && a.nnz_blocks() >= PARALLEL_BLOCKS);
-            if changed || !self.folded_in {
-                self.set_patterns(fine);
-            }
-            self.folded_in = true;
-            fine
+        let fold = a.has_transient();
+        let (fine, changed) = if fold {
+            folded.fold(a, parallel && a.nnz_blocks() >= PARALLEL_BLOCKS)
         } else {
-            if self.folded_in {
-                self.set_patterns(a);
-            }
-            self.folded_in = false;
-            a
+            (a, false)
         };
+        if changed || fold != self.folded_in {
+            self.set_patterns(fine);
+        }
+        self.folded_in = fold;
         for l in 0..self.levels.len() {
             let (done, rest) = self.coarse.split_at_mut(l);
             // The smoother's diagonal is `a`'s, which bounds its transient couplings from
