@@ -88,6 +88,14 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             c.found, c.left
         )?;
     }
+    if let Some(u) = report.untangling_at_rest {
+        let kept = if u.kept { "the second" } else { "the first" };
+        writeln!(
+            out,
+            "| at rest through itself, draped again loose where it crossed: crossings first / second, its steps | {} / {} in {} steps, {kept} kept |",
+            u.before, u.after, u.steps
+        )?;
+    }
     if let Some(n) = report.attached_particles.filter(|&n| n > 0) {
         writeln!(
             out,

@@ -164,6 +164,18 @@ impl<'a> Recorder<'a> {
         }
     }
 
+    /// Takes the state of `sim`: after each step, and at the stage's end when that is not
+    /// its last step's (a garment draped twice keeps the drape that crossed itself less).
+    pub(super) fn rest_on(&mut self, sim: &Simulation) {
+        let stage = self.stage;
+        self.tangles.retain(|(s, _)| *s != stage);
+        self.tangles
+            .extend(sim.tangles().iter().map(|t| (stage, t.clone())));
+        self.positions.clear();
+        self.positions.extend_from_slice(sim.positions());
+        self.time = sim.time();
+    }
+
     /// After every step of the current stage.
     pub(super) fn step(&mut self, sim: &Simulation, stats: &StepStats) -> ControlFlow<()> {
         if self.steps == 0 {
@@ -174,13 +186,7 @@ impl<'a> Recorder<'a> {
             self.exemption_radius = sim.self_exemption_radius();
             self.passes_thin_parts = sim.passes_thin_parts();
         }
-        let stage = self.stage;
-        self.tangles.retain(|(s, _)| *s != stage);
-        self.tangles
-            .extend(sim.tangles().iter().map(|t| (stage, t.clone())));
-        self.positions.clear();
-        self.positions.extend_from_slice(sim.positions());
-        self.time = sim.time();
+        self.rest_on(sim);
         self.steps += 1;
         self.cg += stats.cg_iterations;
         self.cut += u64::from(stats.substeps > 1);

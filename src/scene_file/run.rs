@@ -48,6 +48,7 @@ impl Prepared {
         let mut seam_stalls = Vec::new();
         let mut caught_layers = Vec::new();
         let mut weld_crossings = None;
+        let mut untangling_at_rest = None;
         let mut attached_particles = None;
         let mut sheet_test = None;
         // Names the piece of the cloth a triangle is of (a garment's panels keep their
@@ -98,7 +99,13 @@ impl Prepared {
                             &interrupt,
                             |sim, s| rec.step(sim, s),
                         ) {
-                            Ok(draped) => outcome = ended(&mut rec, &mut stages, draped.outcome.reason),
+                            Ok(draped) => {
+                                // Draped twice, the first drape may be the one kept:
+                                // what is written is where it rests.
+                                rec.rest_on(&draped.simulation);
+                                untangling_at_rest = draped.untangling;
+                                outcome = ended(&mut rec, &mut stages, draped.outcome.reason)
+                            }
                             Err(e) => outcome = failed(&mut rec, &mut stages, e.to_string()),
                         }
                     }
@@ -187,6 +194,7 @@ impl Prepared {
             seam_stalls,
             caught_layers,
             weld_crossings,
+            untangling_at_rest,
             attached_particles,
             tangles,
             checkpoints,

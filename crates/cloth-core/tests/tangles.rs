@@ -1,7 +1,10 @@
 //! Pieces of cloth that start through each other (GarmentCode's hood through its bodice)
 //! are exempt from each other until they have come apart, then collide as any cloth.
 
-use cloth_core::{ClothMesh, Fabric, GridBuilder, Pin, Simulation, SimulationBuilder, SolverSettings, Vec3};
+use cloth_core::{
+    ClothMesh, Fabric, GridBuilder, Pin, RestCriteria, Simulation, SimulationBuilder, SolverSettings,
+    StopReason, Vec3,
+};
 
 /// A 20 cm sheet lying at z = 0 held by its corners, and a 20 x 10 cm strip standing
 /// through its middle (its lower edge `below` under the sheet), as one mesh of two pieces.
@@ -109,4 +112,123 @@ fn pieces_apart_at_the_start_are_not_tangled() {
     let (mesh, first_strip) = crossed(-0.01);
     let sim = simulation(mesh, Vec3::zeros(), first_strip);
     assert!(sim.tangles().is_empty());
+}
+
+/// A 20 x 40 cm sheet folded in half along y = 20 cm, its upper half 1 cm over its lower,
+/// with one particle of the upper half `through` below the lower: a tent of the one piece
+/// through itself, where no pieces are tangled to be exempt from each other. Index of the
+/// tent's apex.
+fn folded_with_a_tent_through(through: f64) -> (ClothMesh, usize) {
+    let mesh = GridBuilder::new(21, 41).size(0.2, 0.4).build().unwrap();
+    let mut x = mesh.positions().to_vec();
+    for p in &mut x {
+        if p.y > 0.2 + 1e-9 {
+            *p = Vec3::new(p.x, 0.4 - p.y, 0.01);
+        } else if p.y > 0.2 - 1e-9 {
+            p.z = 0.005;
+        }
+    }
+    // Row 30 (y = 30 cm, folded back over y = 10 cm), column 10.
+    let apex = 30 * 21 + 10;
+    x[apex].z = -through;
+    let uv = mesh.uv().to_vec();
+    (ClothMesh::new(x, uv, mesh.triangles().to_vec()).unwrap(), apex)
+}
+
+/// The sheet of [`folded_with_a_tent_through`], its tent 1.5 cm through, free but for two
+/// corners of its lower half, without gravity; and the tent's apex.
+fn tent_simulation() -> (Simulation, usize) {
+    let (mesh, apex) = folded_with_a_tent_through(0.015);
+    let sim = SimulationBuilder::new(mesh, Fabric::cotton_like().with_damping(0.01))
+        .settings(SolverSettings {
+            gravity: Vec3::zeros(),
+            time_step: 1.0 / 100.0,
+            ..SolverSettings::default()
+        })
+        .pins([0, 20].map(Pin::fixed))
+        .build()
+        .unwrap();
+    (sim, apex)
+}
+
+/// Steps the tent of [`tent_simulation`] 30 times: out of the sheet within 10, and,
+/// colliding again once out, still out at the end, its apex above the lower half.
+fn comes_out_and_stays_out(sim: &mut Simulation, apex: usize) {
+    let mut out = None;
+    for k in 1..=30 {
+        sim.step().unwrap();
+        if out.is_none() && sim.self_intersections().count == 0 {
+            out = Some(k);
+        }
+    }
+    let out = out.expect("the tent is still through the sheet");
+    assert!(out <= 10, "out after {out} steps");
+    assert_eq!(sim.self_intersections().count, 0);
+    let x = sim.positions();
+    let under = 10 * 21 + 10;
+    assert!(x[apex].z > x[under].z, "apex {} over {}", x[apex].z, x[under].z);
+}
+
+#[test]
+fn cloth_through_itself_in_one_piece_is_pulled_out_then_collides() {
+    let (mut sim, apex) = tent_simulation();
+    // One piece: nothing is tangled, and the tent's six edges go through the lower half.
+    assert!(sim.tangles().is_empty());
+    let start = sim.self_intersections().count;
+    assert!(start >= 6, "{start} crossings");
+    // The pull takes the tent back up through the lower half.
+    comes_out_and_stays_out(&mut sim, apex);
+}
+
+#[test]
+fn cloth_being_pulled_out_of_itself_is_not_at_rest_until_the_pull_gives_up() {
+    // Held through itself, every particle pinned: nothing moves, and the pull out of itself
+    // leaves no fewer crossings step after step until it stops for want of progress.
+    let rest = RestCriteria::default();
+    let run = |through: f64| {
+        let (mesh, _) = folded_with_a_tent_through(through);
+        let n = mesh.vertex_count();
+        let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
+            .settings(SolverSettings {
+                gravity: Vec3::zeros(),
+                time_step: 1.0 / 100.0,
+                ..SolverSettings::default()
+            })
+            .pins((0..n).map(Pin::fixed))
+            .build()
+            .unwrap();
+        let crossings = sim.self_intersections().count;
+        let outcome = sim.run_to_rest(&rest).unwrap();
+        assert_eq!(outcome.reason, StopReason::AtRest);
+        (crossings, outcome.steps)
+    };
+    // Not through: at rest at the end of the first window.
+    let (crossings, window) = run(-0.005);
+    assert_eq!(crossings, 0);
+    assert!(window < 100, "{window}");
+    // Through: the pull goes on for 100 steps without gaining; at the end of the window
+    // it stops in, at rest.
+    let (crossings, steps) = run(0.015);
+    assert!(crossings >= 6);
+    assert!(
+        steps > 100 && steps <= 100 + window,
+        "at rest after {steps} steps, windows of {window}"
+    );
+}
+
+#[test]
+fn pulled_again_loose_the_cloth_comes_out_of_what_the_collision_held() {
+    let (mut sim, apex) = tent_simulation();
+    let start = sim.self_intersections().count;
+    // The pull off, the collision holds the tent through the lower half: its cloth
+    // springing back up would pass through it.
+    sim.set_loose_pull(false);
+    for _ in 0..30 {
+        sim.step().unwrap();
+    }
+    let held = sim.self_intersections().count;
+    assert!(held > 0, "{start} crossings, then {held}");
+    // Pulled again, the crossing cloth loose: out, and colliding again once it is.
+    sim.set_loose_pull(true);
+    comes_out_and_stays_out(&mut sim, apex);
 }

@@ -51,6 +51,12 @@ pub(crate) struct Topology {
     /// `2 k + 1` the side let through it), or `u32::MAX`; empty while there are none (see
     /// [`Topology::set_passes`]).
     pass_side: Vec<u32>,
+    /// Per representative, whether it is where the cloth passes through itself, and the
+    /// pairs of charts passing through each other there (lower first, sorted; a chart
+    /// through itself paired with itself); empty while nowhere is (see
+    /// [`Topology::set_loose`]).
+    loose: Vec<bool>,
+    loose_charts: Vec<(u32, u32)>,
     /// Pairs this near in the flat cloth are exempt, m.
     rest_radius: f64,
 }
@@ -206,6 +212,8 @@ impl Topology {
             chart,
             tangled: Vec::new(),
             pass_side: Vec::new(),
+            loose: Vec::new(),
+            loose_charts: Vec::new(),
             rest_radius,
         }
     }
@@ -284,6 +292,71 @@ impl Topology {
                 .any(|&p| self.triangles[t].iter().any(|&q| self.passing(p, q)))
     }
 
+    /// Makes the cloth within `rings` edges of the `crossings` (edge, triangle) loose, and
+    /// no other: where it is, the two charts of each crossing are exempt from each other,
+    /// as cloth passing through itself is, while other cloth there still collides with
+    /// both.
+    pub fn set_loose(&mut self, crossings: &[(usize, usize)], rings: usize) {
+        self.loose.clear();
+        self.loose_charts.clear();
+        if crossings.is_empty() {
+            return;
+        }
+        let seeds: Vec<u32> = crossings
+            .iter()
+            .flat_map(|&(e, t)| self.edges[e].into_iter().chain(self.triangles[t]))
+            .map(|p| self.rep[p as usize])
+            .collect();
+        self.loose.resize(self.rep.len(), false);
+        for r in within_rings(seeds, rings, |r| {
+            row(&self.neighbours, r as usize).iter().copied()
+        }) {
+            self.loose[r as usize] = true;
+        }
+        let mut charts = Vec::new();
+        for &(e, t) in crossings {
+            let b = self.chart[t];
+            charts.extend(self.edge_triangles(e).map(|s| {
+                let a = self.chart[s];
+                (a.min(b), a.max(b))
+            }));
+        }
+        charts.sort_unstable();
+        charts.dedup();
+        self.loose_charts = charts;
+    }
+
+    /// Whether particle `p` is loose (see [`Topology::set_loose`]).
+    fn is_loose(&self, p: u32) -> bool {
+        !self.loose.is_empty() && self.loose[self.rep[p as usize] as usize]
+    }
+
+    /// Whether charts `a` and `b` pass through each other where the cloth is loose.
+    fn charts_loose(&self, a: u32, b: u32) -> bool {
+        self.loose_charts.binary_search(&(a.min(b), a.max(b))).is_ok()
+    }
+
+    /// Whether particle `p` and triangle `t` are loose and of charts passing through each
+    /// other there.
+    fn particle_loose_with(&self, p: usize, t: usize) -> bool {
+        self.is_loose(p as u32)
+            && self.triangles[t].iter().any(|&q| self.is_loose(q))
+            && self
+                .triangles_of(p)
+                .iter()
+                .any(|&s| self.charts_loose(self.chart[s as usize], self.chart[t]))
+    }
+
+    /// Whether edges `e` and `f` are loose and of charts passing through each other there.
+    fn edges_loose(&self, e: usize, f: usize) -> bool {
+        self.edges[e].iter().any(|&i| self.is_loose(i))
+            && self.edges[f].iter().any(|&j| self.is_loose(j))
+            && self.edge_triangles(e).any(|s| {
+                self.edge_triangles(f)
+                    .any(|t| self.charts_loose(self.chart[s], self.chart[t]))
+            })
+    }
+
     /// Whether charts `a` and `b` are exempt from each other, having begun tangled.
     fn charts_tangled(&self, a: u32, b: u32) -> bool {
         a != b && self.tangled.binary_search(&(a.min(b), a.max(b))).is_ok()
@@ -342,12 +415,16 @@ impl Topology {
     }
 
     /// Particle `p` and triangle `t` are not in contact (see the module's introduction),
-    /// nor while their charts are tangled or they are on the two sides of a layer pass.
+    /// nor while their charts are tangled, they are on the two sides of a layer pass, or
+    /// both are loose.
     pub fn vertex_triangle_exempt(&self, p: usize, t: usize) -> bool {
         if self.particle_tangled_with(p, self.chart[t]) {
             return true;
         }
         if !self.pass_side.is_empty() && self.triangles[t].iter().any(|&q| self.passing(p as u32, q)) {
+            return true;
+        }
+        if !self.loose.is_empty() && self.particle_loose_with(p, t) {
             return true;
         }
         self.near_for_good(p, t)
@@ -390,6 +467,9 @@ impl Topology {
                 .iter()
                 .any(|&i| self.edges[f].iter().any(|&j| self.passing(i, j)))
         {
+            return true;
+        }
+        if !self.loose.is_empty() && self.edges_loose(e, f) {
             return true;
         }
         self.edge_triangles(e).any(|s| {
@@ -562,18 +642,24 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_layer_pass_exempts_its_two_sides_from_each_other_and_nothing_else() {
-        // Two pieces 3 x 3 apart: the first's particles are the layer, the second's first
-        // row the side let through it.
+    /// Square pieces of `n` x `n` particles, 20 cm wide, one at each height of `heights`,
+    /// as one mesh.
+    fn pieces(n: usize, heights: &[f64]) -> ClothMesh {
         let piece = |z: f64| {
-            GridBuilder::new(3, 3)
+            GridBuilder::new(n, n)
                 .size(0.2, 0.2)
                 .origin(Vec3::new(0.0, 0.0, z))
                 .build()
                 .unwrap()
         };
-        let mesh = ClothMesh::join(&[piece(0.0), piece(0.1)]).unwrap();
+        ClothMesh::join(&heights.iter().map(|&z| piece(z)).collect::<Vec<_>>()).unwrap()
+    }
+
+    #[test]
+    fn a_layer_pass_exempts_its_two_sides_from_each_other_and_nothing_else() {
+        // Two pieces 3 x 3 apart: the first's particles are the layer, the second's first
+        // row the side let through it.
+        let mesh = pieces(3, &[0.0, 0.1]);
         let mut topo = Topology::new(&mesh, &[], 1e-3);
         let layer: Vec<usize> = (0..9).collect();
         let side: Vec<usize> = (9..12).collect();
@@ -621,5 +707,75 @@ mod tests {
         // Passes ended, nothing is exempt across the pieces.
         topo.set_passes([]);
         assert!(none_exempt(&topo));
+    }
+
+    #[test]
+    fn loose_cloth_is_exempt_from_the_cloth_it_passes_through_and_from_nothing_else() {
+        // Three pieces of 5 x 5 particles, 10 cm apart: an edge of the first's middle
+        // (particle 12) through a triangle of the second's (37), and the third's middle (62)
+        // through itself.
+        let mesh = pieces(5, &[0.0, 0.1, 0.2]);
+        let mut topo = Topology::new(&mesh, &[], 1e-3);
+        let edge_of = |p: usize| mesh.edges().iter().position(|e| e.contains(&p)).unwrap();
+        let triangle_of = |p: usize| mesh.triangles().iter().position(|t| t.contains(&p)).unwrap();
+        let crossings = [(edge_of(12), triangle_of(37)), (edge_of(62), triangle_of(68))];
+        topo.set_loose(&crossings, 1);
+        // Loose: the crossings' particles and those an edge joins them to.
+        let mut expected_loose: Vec<usize> = Vec::new();
+        for &(e, t) in &crossings {
+            let seeds: Vec<usize> = mesh.edges()[e].into_iter().chain(mesh.triangles()[t]).collect();
+            for edge in mesh.edges() {
+                for &s in &seeds {
+                    if edge.contains(&s) {
+                        expected_loose.extend(edge);
+                    }
+                }
+            }
+        }
+        expected_loose.sort_unstable();
+        expected_loose.dedup();
+        let loose: Vec<usize> = (0..75).filter(|&p| topo.is_loose(p as u32)).collect();
+        assert_eq!(loose, expected_loose);
+        let piece_of = |p: usize| p / 25;
+        let passing = |a: usize, b: usize| (a.min(b), a.max(b)) == (0, 1) || (a, b) == (2, 2);
+        let far = |topo: &Topology, p: usize, t: usize| {
+            !topo.triangles[t].iter().any(|&i| topo.near_in_mesh(p as u32, i)) && !topo.near_for_good(p, t)
+        };
+        let mut exempt = [0; 2];
+        for p in 0..75 {
+            for t in (0..topo.triangles.len()).filter(|&t| far(&topo, p, t)) {
+                let q = topo.triangles[t][0] as usize;
+                let expected = loose.contains(&p)
+                    && topo.triangles[t].iter().any(|&i| loose.contains(&(i as usize)))
+                    && passing(piece_of(p), piece_of(q));
+                assert_eq!(
+                    topo.vertex_triangle_exempt(p, t),
+                    expected,
+                    "particle {p}, triangle {t}"
+                );
+                if expected {
+                    exempt[usize::from(piece_of(p) == 2)] += 1;
+                }
+            }
+        }
+        // Both the two pieces through each other and the one through itself.
+        assert!(exempt[0] > 0 && exempt[1] > 0, "{exempt:?}");
+        for e in 0..topo.edges.len() {
+            for f in 0..topo.edges.len() {
+                let (a, b) = (topo.edges[e][0] as usize, topo.edges[f][0] as usize);
+                if piece_of(a) != piece_of(b) {
+                    let ends = |k: usize| topo.edges[k].iter().any(|&i| loose.contains(&(i as usize)));
+                    let expected = ends(e) && ends(f) && passing(piece_of(a), piece_of(b));
+                    assert_eq!(topo.edge_edge_exempt(e, f), expected, "edges {e} {f}");
+                }
+            }
+        }
+        // Loose no more, nothing is exempt across the pieces.
+        topo.set_loose(&[], 1);
+        for p in 0..25 {
+            for t in 32..64 {
+                assert!(!topo.vertex_triangle_exempt(p, t), "particle {p}, triangle {t}");
+            }
+        }
     }
 }

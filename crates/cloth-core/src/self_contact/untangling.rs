@@ -109,13 +109,14 @@ fn moves(topology: &Topology, x: &[Vec3], pairs: &[(usize, usize)], step: f64) -
 
 /// Moves the cloth at `x` at most `step` (m) towards coming apart where it passes
 /// through itself, but for the particles `fixed`, unless the move leaves more crossings
-/// (then it is tried at half the step, once). Returns how many crossings there were.
+/// (then it is tried at half the step, once). Returns the crossings there were (edge,
+/// triangle).
 pub(crate) fn pull_apart(
     topology: &Topology,
     x: &mut [Vec3],
     fixed: impl Fn(usize) -> bool,
     step: f64,
-) -> usize {
+) -> Vec<(usize, usize)> {
     // Layers being let through each other (see `LayerPass`) are left to pass.
     let crossings = |x: &[Vec3]| -> Vec<(usize, usize)> {
         crossing_pairs(topology, x)
@@ -125,7 +126,7 @@ pub(crate) fn pull_apart(
     };
     let pairs = crossings(x);
     if pairs.is_empty() {
-        return 0;
+        return pairs;
     }
     let start = x.to_vec();
     for scale in [1.0, 0.5] {
@@ -136,11 +137,11 @@ pub(crate) fn pull_apart(
             }
         }
         if crossings(x).len() <= pairs.len() {
-            return pairs.len();
+            return pairs;
         }
         x.copy_from_slice(&start);
     }
-    pairs.len()
+    pairs
 }
 
 #[cfg(test)]
@@ -174,7 +175,7 @@ mod tests {
         let (mesh, mut x) = cone_through_sheet(0.005, -0.005);
         let topology = Topology::new(&mesh, &[], 0.0);
         let start = x.clone();
-        let first = pull_apart(&topology, &mut x, |_| false, 5e-4);
+        let first = pull_apart(&topology, &mut x, |_| false, 5e-4).len();
         // The six edges from the apex to the rim go through the sheet.
         assert_eq!(first, 6);
         // The curve shrinks when the cone goes back down through the sheet, and the sheet
@@ -185,7 +186,7 @@ mod tests {
         }
         assert!((x[3].xy() - start[3].xy()).norm() < 1e-12);
         let mut steps = 1;
-        while pull_apart(&topology, &mut x, |_| false, 5e-4) > 0 {
+        while !pull_apart(&topology, &mut x, |_| false, 5e-4).is_empty() {
             steps += 1;
             assert!(steps < 100, "still through after {steps} steps");
         }
@@ -205,7 +206,7 @@ mod tests {
         let (mesh, mut x) = cone_through_sheet(-0.001, -0.005);
         let topology = Topology::new(&mesh, &[], 0.0);
         let start = x.clone();
-        assert_eq!(pull_apart(&topology, &mut x, |_| false, 5e-4), 0);
+        assert_eq!(pull_apart(&topology, &mut x, |_| false, 5e-4).len(), 0);
         assert_eq!(x, start);
     }
 

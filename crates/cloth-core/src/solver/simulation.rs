@@ -503,6 +503,15 @@ impl Simulation {
         self.exempt_passes();
         Ok(())
     }
+    /// Pulls the cloth out of itself again where it crosses itself now, the two pieces of
+    /// each crossing loose round it (exempt from each other there), or, off, stops pulling
+    /// and holds what crosses as it is (see `SelfContacts::set_loose_pull`). Nothing
+    /// without self-collision.
+    pub fn set_loose_pull(&mut self, on: bool) {
+        if let Some(sc) = self.self_contacts.as_mut() {
+            sc.set_loose_pull(on);
+        }
+    }
     /// Replaces the velocities (one finite vector per particle).
     pub fn set_velocities(&mut self, v: &[Vec3]) -> Result<(), ParamError> {
         per_particle("velocities", v, self.v.len())?;
@@ -810,7 +819,10 @@ impl Simulation {
                 // The tolerance is per step of the solver's length: the window's budget
                 // grows with its time as the steps do.
                 let budget = criteria.tolerance * window_time / base;
-                if moved_farther(&self.x, &self.ws.rest_anchor, budget) <= allowed {
+                // Nor is cloth at rest that is still being pulled out of itself: the few
+                // particles moved are within the fraction allowed to move.
+                let pulling = self.self_contacts.as_ref().is_some_and(|sc| sc.pulling_apart());
+                if !pulling && moved_farther(&self.x, &self.ws.rest_anchor, budget) <= allowed {
                     return Ok(RestOutcome {
                         reason: StopReason::AtRest,
                         steps: k,

@@ -4,11 +4,13 @@
 mod caught;
 mod cut_off;
 mod settings;
+mod untangling_at_rest;
 mod weld_crossings;
 mod zip;
 
 pub use caught::CaughtLayer;
 pub use settings::{DrapeSettings, SewingSettings};
+pub use untangling_at_rest::UntanglingAtRest;
 pub use weld_crossings::WeldCrossings;
 
 use crate::garment::{Garment, GarmentError, HeldOpen, Welded};
@@ -509,6 +511,9 @@ pub struct Draped {
     pub outcome: RestOutcome,
     pub seconds: f64,
     pub cg_iterations: usize,
+    /// The second drape of a garment at rest through itself, if it was (see
+    /// `untangling_at_rest`).
+    pub untangling: Option<UntanglingAtRest>,
 }
 
 /// A simulation of the sewn garment on the bodies with the solver settings given
@@ -538,8 +543,10 @@ pub fn drape_simulation(
 }
 
 /// Drapes the sewn garment until at rest (the source's stopping mechanism) or the step
-/// limit. `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]),
-/// as may `interrupt` inside a step.
+/// limit; at rest through itself, it is draped again, loose where it crosses, and the
+/// drape crossing less kept (see `untangling_at_rest`).
+/// `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]), as may
+/// `interrupt` inside a step.
 pub fn drape(
     sewn: &Sewn,
     collider: Arc<dyn Collider>,
@@ -550,23 +557,43 @@ pub fn drape(
     settings.validate()?;
     let start = Instant::now();
     let rest = settings.rest();
-    let mut simulation = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
+    let mut simulation = drape_simulation(sewn, collider.clone(), settings.solver(), settings.drag)?;
     simulation.set_interrupt(interrupt.clone());
     let mut cg = 0;
-    let outcome = simulation
-        .run_to_rest_with(&rest, |sim, stats| {
-            cg += stats.cg_iterations;
-            observe(sim, stats)
-        })
-        .map_err(|source| GarmentError::Sim {
-            stage: "draping",
-            source,
-        })?;
+    let mut watch = |sim: &Simulation, stats: &StepStats| {
+        cg += stats.cg_iterations;
+        observe(sim, stats)
+    };
+    let failed = |source| GarmentError::Sim {
+        stage: "draping",
+        source,
+    };
+    let mut outcome = simulation.run_to_rest_with(&rest, &mut watch).map_err(failed)?;
+    let mut untangling = None;
+    let before = simulation.self_intersections().count;
+    if outcome.reason == cloth_core::StopReason::AtRest && before > 0 {
+        // Through itself at rest: draped again from where it was sewn, loose where it
+        // crosses (see `untangling_at_rest`).
+        let mut again = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
+        again.set_interrupt(interrupt.clone());
+        again.set_loose_pull(true);
+        let second = again.run_to_rest_with(&rest, &mut watch).map_err(failed)?;
+        let report = UntanglingAtRest::new(before, again.self_intersections().count, &second);
+        if report.kept {
+            simulation = again;
+            outcome = RestOutcome {
+                steps: outcome.steps + second.steps,
+                ..second
+            };
+        }
+        untangling = Some(report);
+    }
     Ok(Draped {
         simulation,
         outcome,
         seconds: start.elapsed().as_secs_f64(),
         cg_iterations: cg,
+        untangling,
     })
 }
 
