@@ -577,16 +577,18 @@ pub fn drape(
         let mut again = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
         again.set_interrupt(interrupt.clone());
         again.set_loose_pull(true);
-        let second = again.run_to_rest_with(&rest, &mut watch).map_err(failed)?;
-        let report = UntanglingAtRest::new(before, again.self_intersections().count, &second);
-        if report.kept {
-            simulation = again;
-            outcome = RestOutcome {
-                steps: outcome.steps + second.steps,
-                ..second
-            };
+        // A second drape that fails loses nothing: the first rest stands.
+        if let Ok(second) = again.run_to_rest_with(&rest, &mut watch) {
+            let report = UntanglingAtRest::new(before, again.self_intersections().count, &second);
+            if report.kept {
+                simulation = again;
+                outcome = RestOutcome {
+                    steps: outcome.steps + second.steps,
+                    ..second
+                };
+            }
+            untangling = Some(report);
         }
-        untangling = Some(report);
     }
     Ok(Draped {
         simulation,
