@@ -148,6 +148,7 @@ fn a_tube_too_far_open_to_zip_fails_saying_nothing_lies_between() {
                 gap_mm,
                 weld_mm,
                 held_by,
+                others_held_by,
                 ..
             } = &e
             else {
@@ -156,7 +157,10 @@ fn a_tube_too_far_open_to_zip_fails_saying_nothing_lies_between() {
             assert!(*gap_mm > *weld_mm, "{e}");
             // The zip's reach (a spacing, near the 2 cm edge), not the weld's (half that).
             assert!(*weld_mm > 1.25e3 * FORCED_WELD * 0.02, "{e}");
+            // Nothing between the named seam's sides, nor the other's.
             assert_eq!(*held_by, HeldOpen::Nothing, "{e}");
+            assert_eq!(*others_held_by, HeldOpen::Nothing, "{e}");
+            assert!(!e.to_string().contains("other open seams"), "{e}");
         }
         other => panic!("{:?}", other.map(|s| s.report)),
     }
@@ -168,12 +172,25 @@ fn a_tube_half_the_posts_girth_fails_saying_the_post_lies_between_its_sides() {
     // through it, and the failure says the garment is too small to go round it.
     match sew_tube(0.5) {
         Err(e @ GarmentError::Stalled { .. }) => {
-            let GarmentError::Stalled { gap_mm, held_by, .. } = &e else {
+            let GarmentError::Stalled {
+                gap_mm,
+                held_by,
+                others_held_by,
+                ..
+            } = &e
+            else {
                 unreachable!()
             };
             assert!(*gap_mm > 40.0, "{gap_mm}");
             assert_eq!(*held_by, HeldOpen::Body);
             assert!(e.to_string().contains("the body lies between its sides"), "{e}");
+            // The other side seam is open across the post as well, and said to be, apart.
+            assert_eq!(*others_held_by, HeldOpen::Body, "{e}");
+            assert!(
+                e.to_string()
+                    .ends_with("; between the sides of the other open seams lies the body"),
+                "{e}"
+            );
         }
         other => panic!("{:?}", other.map(|s| s.report)),
     }

@@ -311,7 +311,10 @@ class SewnGarment:
         """The welded mesh (its positions are where the seams closed)."""
     @property
     def report(self) -> dict[str, Any]:
-        """Steps, seconds, CG iterations, the widest gap at welding (m), the pull (N)."""
+        """Steps, seconds, CG iterations, the widest gap at welding (m), the pull (N); the
+        seams that stalled and how they closed (``seam_stalls``), the layers found across
+        them (``caught_layers``) and the crossings the weld made (``weld_crossings``), as a
+        scene's report.json gives them."""
     def drape(
         self,
         bodies: Sequence[Body],
@@ -334,6 +337,11 @@ class Draped:
     def outcome(self) -> RestOutcome: ...
     @property
     def seconds(self) -> float: ...
+    @property
+    def untangling_at_rest(self) -> dict[str, Any] | None:
+        """If the drape came to rest through itself, the garment draped again loose where
+        it crossed: ``before`` and ``after`` (the crossings of the first and second drape),
+        ``steps`` (the second's), ``kept`` (whether the second was kept); else None."""
 
 @final
 class StepStats:

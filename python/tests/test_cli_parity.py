@@ -186,7 +186,8 @@ checkpoints = [1, 10]
 @pytest.fixture(scope="module")
 def garment_runs(tmp_path_factory, cloth_bin, assets):
     """The coarse skirt run by the command and by Scene.run, and sewn and draped through
-    the API: (cli folder, python folder, the RunResult, the draped simulation)."""
+    the API: (cli folder, python folder, the RunResult, the sewn garment, the draped
+    simulation, the stages the callback saw)."""
     import subprocess
 
     tmp = tmp_path_factory.mktemp("garment")
@@ -201,11 +202,11 @@ def garment_runs(tmp_path_factory, cloth_bin, assets):
     garment = cloth.Garment(cloth.Pattern.load(assets / "patterns" / "skirt.toml"), 0.04)
     sewn = garment.sew([body], cloth.Fabric.preset("cotton_poplin"))
     draped = sewn.drape([body])
-    return cli_out, py_out, result, draped, stages
+    return cli_out, py_out, result, sewn, draped, stages
 
 
 def test_a_garment_scene_agrees_with_the_command(garment_runs, obj_vertices):
-    cli_out, py_out, result, _, stages = garment_runs
+    cli_out, py_out, result, _, _, stages = garment_runs
     assert files_under(cli_out) == files_under(py_out)
     assert any(n.startswith("frames/") for n in files_under(py_out))
     theirs, ours = read_report(cli_out), read_report(py_out)
@@ -228,8 +229,13 @@ def test_a_garment_scene_agrees_with_the_command(garment_runs, obj_vertices):
 
 
 def test_a_garment_draped_through_the_api_is_the_commands(garment_runs, obj_vertices):
-    cli_out, _, _, draped, _ = garment_runs
+    cli_out, _, _, sewn, draped, _ = garment_runs
     report = read_report(cli_out)
     assert draped.outcome.steps == report["stages"][1]["steps"]
     assert draped.outcome.reason == report["stages"][1]["ended"]
+    # What the sewing and the drape did, as the report gives it.
+    for key in ("seam_stalls", "caught_layers", "weld_crossings"):
+        assert sewn.report[key] == report[key], key
+    assert set(sewn.report["weld_crossings"]) == {"found", "left", "regions_moved"}
+    assert draped.untangling_at_rest == report["untangling_at_rest"]
     np.testing.assert_allclose(draped.simulation.positions, obj_vertices(cli_out / "cloth.obj"), rtol=0, atol=1e-6)

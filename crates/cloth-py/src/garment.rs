@@ -2,7 +2,7 @@
 
 use crate::arrays::{index_array, index_vector, points};
 use crate::body::{collider, Body};
-use crate::convert::from_dict;
+use crate::convert::{from_dict, json_to_python};
 use crate::errors::{garment as garment_error, input};
 use crate::fabric::Fabric;
 use crate::mesh::ClothMesh;
@@ -225,7 +225,9 @@ impl SewnGarment {
         }
     }
     /// Steps, seconds, CG iterations, the widest gap at welding (m), the pull per seam pair
-    /// (N).
+    /// (N); the seams that stalled and how they closed (`seam_stalls`), the layers found
+    /// across them (`caught_layers`) and the crossings the weld made (`weld_crossings`), as
+    /// a scene's report.json gives them.
     #[getter]
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let r = &self.inner.report;
@@ -235,6 +237,9 @@ impl SewnGarment {
         d.set_item("cg_iterations", r.cg_iterations)?;
         d.set_item("max_gap", r.max_gap)?;
         d.set_item("pull", r.pull)?;
+        d.set_item("seam_stalls", json_to_python(py, &r.stalls)?)?;
+        d.set_item("caught_layers", json_to_python(py, &r.caught)?)?;
+        d.set_item("weld_crossings", json_to_python(py, &r.weld_crossings)?)?;
         Ok(d)
     }
     /// The source's third stage: gravity on, until at rest (`settings` are a scene's
@@ -271,6 +276,7 @@ impl SewnGarment {
         }
         let draped = draped.map_err(|e| garment_error(py, &e))?;
         Ok(Draped {
+            untangling_at_rest: json_to_python(py, &draped.untangling)?.unbind(),
             outcome: Py::new(py, RestOutcome::new(py, &draped.outcome)?)?,
             seconds: draped.seconds,
             simulation: Py::new(
@@ -293,4 +299,9 @@ pub struct Draped {
     pub outcome: Py<RestOutcome>,
     /// Wall time, s.
     pub seconds: f64,
+    /// If the drape came to rest through itself: the garment draped again loose where it
+    /// crossed, as a dict (`before`, `after`: the crossings of the first and second drape;
+    /// `steps`: the second's; `kept`: whether the second was kept), as a scene's
+    /// report.json gives it; None otherwise.
+    pub untangling_at_rest: Py<PyAny>,
 }

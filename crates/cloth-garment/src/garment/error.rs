@@ -60,7 +60,9 @@ pub enum GarmentError {
     /// sides of their open pairs.
     #[error(
         "the seams stopped closing at step {steps}: {seam} is still {gap_mm:.1} mm apart with the \
-         pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm); {held_by}"
+         pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm); \
+         {held_by}{}",
+        others_held_by.of_other_seams()
     )]
     Stalled {
         steps: u64,
@@ -68,8 +70,10 @@ pub enum GarmentError {
         gap_mm: f64,
         pull_factor: f64,
         weld_mm: f64,
-        /// What lies between the sides of the open pairs.
+        /// What lies between the sides of the open pairs of the seam named.
         held_by: HeldOpen,
+        /// What lies between the sides of the other seams' open pairs.
+        others_held_by: HeldOpen,
     },
     /// The observer asked to stop (a user's interrupt, say).
     #[error("{stage} stopped at step {steps}")]
@@ -96,13 +100,31 @@ pub enum HeldOpen {
     Nothing,
 }
 
+/// Panel names, each in quotes, separated by commas.
+fn quoted(panels: &[String]) -> String {
+    let names: Vec<String> = panels.iter().map(|p| format!("'{p}'")).collect();
+    names.join(", ")
+}
+
+impl HeldOpen {
+    /// What lies between the sides of seams other than the one named, as the end of a
+    /// sentence about it: empty for nothing.
+    fn of_other_seams(&self) -> String {
+        match self {
+            Self::Cloth(panels) => format!(
+                "; between the sides of the other open seams lies cloth of panel {}",
+                quoted(panels)
+            ),
+            Self::Body => "; between the sides of the other open seams lies the body".into(),
+            Self::Nothing => String::new(),
+        }
+    }
+}
+
 impl std::fmt::Display for HeldOpen {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::Cloth(panels) => {
-                let names: Vec<String> = panels.iter().map(|p| format!("'{p}'")).collect();
-                write!(f, "cloth of panel {} lies between its sides", names.join(", "))
-            }
+            Self::Cloth(panels) => write!(f, "cloth of panel {} lies between its sides", quoted(panels)),
             Self::Body => write!(
                 f,
                 "the body lies between its sides: the garment is too small there to go round it"

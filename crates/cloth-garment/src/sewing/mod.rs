@@ -292,13 +292,20 @@ pub fn sew(
                     weld
                 };
                 if gap > reach || held_by != HeldOpen::Nothing {
+                    // Said seam by seam: what lies between the named seam's own sides, and
+                    // between the other open seams' (GarmentCode's rand_1_088 was said to
+                    // have its right cuff held open by the left sleeve, which lay across
+                    // the left cuff's seam).
+                    let (own, others): (Vec<[usize; 2]>, Vec<[usize; 2]>) =
+                        open.iter().partition(|p| garment.seams[seam].pairs.contains(p));
                     return Err(GarmentError::Stalled {
                         steps,
                         seam: garment.seams[seam].name.clone(),
                         gap_mm: 1e3 * gap,
                         pull_factor: pull_level.boost,
                         weld_mm: 1e3 * reach,
-                        held_by,
+                        held_by: zip::held_open(garment, &sim, bodies.as_ref(), &own),
+                        others_held_by: zip::held_open(garment, &sim, bodies.as_ref(), &others),
                     });
                 }
                 zip = Some(zip::Zip::new(open, sim.positions(), stall.window));
