@@ -57,6 +57,10 @@ pub(crate) struct Topology {
     /// [`Topology::set_loose`]).
     loose: Vec<bool>,
     loose_charts: Vec<(u32, u32)>,
+    /// Scratch for [`Topology::set_loose`]: the representatives reached by the last ring
+    /// and those the next one reaches.
+    loose_frontier: Vec<u32>,
+    loose_next: Vec<u32>,
     /// Pairs this near in the flat cloth are exempt, m.
     rest_radius: f64,
 }
@@ -214,6 +218,8 @@ impl Topology {
             pass_side: Vec::new(),
             loose: Vec::new(),
             loose_charts: Vec::new(),
+            loose_frontier: Vec::new(),
+            loose_next: Vec::new(),
             rest_radius,
         }
     }
@@ -302,18 +308,39 @@ impl Topology {
         if crossings.is_empty() {
             return;
         }
-        let seeds: Vec<u32> = crossings
-            .iter()
-            .flat_map(|&(e, t)| self.edges[e].into_iter().chain(self.triangles[t]))
-            .map(|p| self.rep[p as usize])
-            .collect();
+        // Called every step while a drape pulls tangled cloth apart: the marks, the
+        // frontiers and the chart pairs live in buffers kept from step to step.
         self.loose.resize(self.rep.len(), false);
-        for r in within_rings(seeds, rings, |r| {
-            row(&self.neighbours, r as usize).iter().copied()
-        }) {
-            self.loose[r as usize] = true;
+        let mut frontier = std::mem::take(&mut self.loose_frontier);
+        let mut next = std::mem::take(&mut self.loose_next);
+        frontier.clear();
+        for &(e, t) in crossings {
+            for p in self.edges[e].into_iter().chain(self.triangles[t]) {
+                let r = self.rep[p as usize];
+                if !self.loose[r as usize] {
+                    self.loose[r as usize] = true;
+                    frontier.push(r);
+                }
+            }
         }
-        let mut charts = Vec::new();
+        for _ in 0..rings {
+            next.clear();
+            for &r in &frontier {
+                for &s in row(&self.neighbours, r as usize) {
+                    if !self.loose[s as usize] {
+                        self.loose[s as usize] = true;
+                        next.push(s);
+                    }
+                }
+            }
+            if next.is_empty() {
+                break;
+            }
+            std::mem::swap(&mut frontier, &mut next);
+        }
+        self.loose_frontier = frontier;
+        self.loose_next = next;
+        let mut charts = std::mem::take(&mut self.loose_charts);
         for &(e, t) in crossings {
             let b = self.chart[t];
             charts.extend(self.edge_triangles(e).map(|s| {
@@ -777,5 +804,14 @@ mod tests {
                 assert!(!topo.vertex_triangle_exempt(p, t), "particle {p}, triangle {t}");
             }
         }
+        // Loose again, elsewhere and wider, with the buffers of the first call: the
+        // particles within two edges of the crossing and no others.
+        let (e, t) = crossings[1];
+        topo.set_loose(&[(e, t)], 2);
+        let seeds: Vec<usize> = mesh.edges()[e].into_iter().chain(mesh.triangles()[t]).collect();
+        let expected = crate::mesh::Neighbours::of(&mesh).around(seeds, 2);
+        let loose: Vec<usize> = (0..75).filter(|&p| topo.is_loose(p as u32)).collect();
+        assert_eq!(loose, expected);
+        assert!(loose.iter().all(|&p| piece_of(p) == 2) && loose.len() > expected_loose.len() / 2);
     }
 }
