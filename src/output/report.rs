@@ -122,6 +122,10 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
                     "nothing between the open pairs' sides: drawn together and welded (pull at {} times full)",
                     s.pull_factor
                 ),
+                StallThen::StartedOver => format!(
+                    "the body between its own sides, clear of them as placed: sewn again from the placed panels with this seam drawn shut first (pull at {} times full)",
+                    s.pull_factor
+                ),
             };
             writeln!(out, "| {} | {} | {:.2} | {then} |", s.step, s.seam, 1e3 * s.gap)?;
         }

@@ -75,6 +75,10 @@ pub enum StallThen {
     /// With the pull at its strongest and nothing between the open pairs' sides, they were
     /// drawn together over a stall's window of steps and welded (see `zip`).
     Zipped,
+    /// With the pull at its strongest and the body between the named seam's own sides,
+    /// which were clear of it where the panels were placed, the sewing started over from
+    /// the placed panels with that seam and those round it drawn shut first (see [`sew`]).
+    StartedOver,
 }
 
 /// Where the sewing stands after a step, for its observer.
@@ -115,6 +119,13 @@ pub struct Sewn {
 /// when every seam gap is under the tolerance, then welds. `observe` sees every step (with
 /// the widest gap and the stalls so far) and may stop it ([`GarmentError::Stopped`]), as may `interrupt`
 /// inside a step.
+///
+/// A seam held open by the body between its own sides, that was clear of it where the
+/// panels were placed, was drawn round the body by the seams that closed before it: the
+/// sewing starts over from the placed panels with that seam and those round it (see
+/// [`Garment::seams_around`]) drawn shut first, each that was clear as placed (at most
+/// [`MAX_STARTS_OVER`] times; the steps of every attempt are counted, and `observe` sees
+/// them all).
 pub fn sew(
     garment: &Garment,
     panel_fabrics: &[Fabric],
@@ -131,7 +142,112 @@ pub fn sew(
             expected: "one fabric per panel",
         });
     }
-    let start = Instant::now();
+    let mut attempt = Attempt {
+        held: Vec::new(),
+        first: Vec::new(),
+        steps: 0,
+        cg: 0,
+        stalls: Vec::new(),
+        failed: None,
+        began: Instant::now(),
+    };
+    loop {
+        let mut held = None;
+        let error = match sew_once(
+            garment,
+            panel_fabrics,
+            collider.clone(),
+            settings,
+            interrupt,
+            &attempt,
+            &mut held,
+            &mut observe,
+        ) {
+            Ok(Some(sewn)) => return Ok(sewn),
+            // Cloth or the body lay between the seam's sides where the panels were placed:
+            // drawn shut first it would pass through them. The attempt before stands.
+            Ok(None) => {
+                return Err(attempt
+                    .failed
+                    .take()
+                    .expect("an attempt drawing seams shut first follows a failure"))
+            }
+            Err(error) => error,
+        };
+        match held {
+            Some(held) if attempt.held.len() < MAX_STARTS_OVER && !attempt.held.contains(&held.seam) => {
+                attempt.steps += held.steps;
+                attempt.cg += held.cg;
+                attempt.stalls = held.stalls;
+                attempt.stalls.push(SeamStall {
+                    step: attempt.steps,
+                    seam: garment.seams[held.seam].name.clone(),
+                    gap: held.gap,
+                    pull_factor: held.pull_factor,
+                    then: StallThen::StartedOver,
+                });
+                attempt.held.push(held.seam);
+                for s in garment.seams_around(held.seam) {
+                    if !attempt.first.contains(&s) {
+                        attempt.first.push(s);
+                    }
+                }
+                attempt.failed = Some(error);
+            }
+            _ => return Err(error),
+        }
+    }
+}
+
+/// How many times the sewing starts over with a seam the body held open drawn shut first
+/// (see [`sew`]). GarmentCode's rand_1_088 drew its cuffs along and off the arms by the
+/// wide sleeve ends gathered onto them before their own seams closed, and stalled with
+/// the arm between the cuff's seam to the sleeve.
+pub const MAX_STARTS_OVER: usize = 2;
+
+/// The attempts at sewing before this one: the seams to draw shut first, the steps and
+/// iterations taken and the stalls met, and the failure that ended the last.
+#[derive(Debug)]
+struct Attempt {
+    /// The seams the body held open, each in an attempt before, and those round them
+    /// (see [`Garment::seams_around`]).
+    held: Vec<usize>,
+    first: Vec<usize>,
+    steps: u64,
+    cg: usize,
+    stalls: Vec<SeamStall>,
+    failed: Option<GarmentError>,
+    began: Instant,
+}
+
+/// A seam one attempt stopped at with the body between its own sides, and the attempt's
+/// steps, iterations and stalls.
+struct HeldByBody {
+    seam: usize,
+    gap: f64,
+    pull_factor: f64,
+    steps: u64,
+    cg: usize,
+    stalls: Vec<SeamStall>,
+}
+
+/// One attempt at [`sew`], after the steps of `attempt`, drawing its seams shut first;
+/// `None` if cloth or a body lies between their sides where the panels were placed. A
+/// failure with the body between the named seam's own sides is told in `held`.
+#[allow(clippy::too_many_arguments)]
+fn sew_once<F>(
+    garment: &Garment,
+    panel_fabrics: &[Fabric],
+    collider: Arc<dyn Collider>,
+    settings: &SewingSettings,
+    interrupt: &Interrupt,
+    attempt: &Attempt,
+    held: &mut Option<HeldByBody>,
+    observe: &mut F,
+) -> Result<Option<Sewn>, GarmentError>
+where
+    F: FnMut(&Simulation, &StepStats, &SewingProgress) -> ControlFlow<()>,
+{
     // Panels of one fabric share it, so its bending calibration is computed once.
     let mut fabrics: Vec<Fabric> = Vec::new();
     let panel_material: Vec<usize> = panel_fabrics
@@ -198,14 +314,44 @@ pub fn sew(
         .collider(collider)
         .build()?;
     sim.set_interrupt(interrupt.clone());
+    let stall = Stall::new(settings);
+    // The seams the body held open in an attempt before, and those round them, drawn shut
+    // first where nothing lies between their sides as placed, no faster than half a
+    // spacing a step, so the solve spreads the move into the cloth beside them.
+    let mut draw_first = None;
+    if !attempt.held.is_empty() {
+        let clear = |seams: &[usize]| {
+            let pairs: Vec<[usize; 2]> = seams
+                .iter()
+                .flat_map(|&s| garment.seams[s].pairs.iter().copied())
+                .collect();
+            zip::held_open(garment, &sim, bodies.as_ref(), &pairs) == HeldOpen::Nothing
+        };
+        if !clear(&attempt.held) {
+            return Ok(None);
+        }
+        let first: Vec<[usize; 2]> = attempt
+            .first
+            .iter()
+            .filter(|&&s| attempt.held.contains(&s) || clear(&[s]))
+            .flat_map(|&s| garment.seams[s].pairs.iter().copied())
+            .collect();
+        let x = sim.positions();
+        let widest = first
+            .iter()
+            .map(|&[a, b]| (x[a] - x[b]).norm())
+            .fold(0.0, f64::max);
+        let steps = (widest / (0.5 * spacing)).ceil() as u64;
+        draw_first = Some(zip::Zip::new(first, x, steps.max(stall.window)));
+    }
     let pull = settings.pull_strain * softest * spacing;
     let mut cg = 0;
     let (mut seam, mut gap) = garment.widest_gap(sim.positions());
     let mut steps = 0;
-    let (mut pull_level, mut stall) = (PullLevel::new(), Stall::new(settings));
-    let mut stalls = Vec::new();
+    let (mut pull_level, mut stall) = (PullLevel::new(), stall);
+    let mut stalls = attempt.stalls.clone();
     let stall_at = |step: u64, seam: usize, gap: f64, pull_factor: f64, then: StallThen| SeamStall {
-        step,
+        step: attempt.steps + step,
         seam: garment.seams[seam].name.clone(),
         gap,
         pull_factor,
@@ -228,7 +374,7 @@ pub fn sew(
             if steps < sew_on_until && passing {
                 // Closed over a layer being let through: sewn on until it is through.
             } else if closing_catches < CLOSING_CATCHES
-                && (passing || catcher.catch(garment, &mut sim, bodies.as_ref(), steps) > 0)
+                && (passing || catcher.catch(garment, &mut sim, bodies.as_ref(), attempt.steps + steps) > 0)
             {
                 // A layer still on its way through after a window, or new cloth found
                 // across the closed seams: another window (a weld now would cross it).
@@ -243,7 +389,7 @@ pub fn sew(
                 break;
             }
             return Err(GarmentError::NotSewn {
-                steps,
+                steps: attempt.steps + steps,
                 seam: garment.seams[seam].name.clone(),
                 gap_mm: 1e3 * gap,
                 tolerance_mm: 1e3 * settings.gap_tolerance,
@@ -251,7 +397,7 @@ pub fn sew(
         }
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
         if zip.is_none() && ramp >= 1.0 && gap >= settings.gap_tolerance && stall.stalled(gap, steps) {
-            let caught = catcher.catch(garment, &mut sim, bodies.as_ref(), steps) > 0;
+            let caught = catcher.catch(garment, &mut sim, bodies.as_ref(), attempt.steps + steps) > 0;
             if caught {
                 sew_on_until = steps + stall.window;
             }
@@ -298,13 +444,24 @@ pub fn sew(
                     // the left cuff's seam).
                     let (own, others): (Vec<[usize; 2]>, Vec<[usize; 2]>) =
                         open.iter().partition(|p| garment.seams[seam].pairs.contains(p));
+                    let own = zip::held_open(garment, &sim, bodies.as_ref(), &own);
+                    if own == HeldOpen::Body {
+                        *held = Some(HeldByBody {
+                            seam,
+                            gap,
+                            pull_factor: pull_level.boost,
+                            steps,
+                            cg,
+                            stalls: stalls.clone(),
+                        });
+                    }
                     return Err(GarmentError::Stalled {
-                        steps,
+                        steps: attempt.steps + steps,
                         seam: garment.seams[seam].name.clone(),
                         gap_mm: 1e3 * gap,
                         pull_factor: pull_level.boost,
                         weld_mm: 1e3 * reach,
-                        held_by: zip::held_open(garment, &sim, bodies.as_ref(), &own),
+                        held_by: own,
                         others_held_by: zip::held_open(garment, &sim, bodies.as_ref(), &others),
                     });
                 }
@@ -328,12 +485,15 @@ pub fn sew(
         if let Some(zip) = zip.as_mut() {
             zip.draw(&mut sim)?;
         }
+        if let Some(first) = draw_first.as_mut() {
+            first.draw(&mut sim)?;
+        }
         let stats = match sim.step() {
             Ok(stats) => stats,
             Err(SimError::Interrupted { .. }) => {
                 return Err(GarmentError::Stopped {
                     stage: "sewing",
-                    steps,
+                    steps: attempt.steps + steps,
                 })
             }
             // A raised pull the cloth cannot follow even in the shortest steps: the state
@@ -370,7 +530,7 @@ pub fn sew(
         if observe(&sim, &stats, &progress).is_break() {
             return Err(GarmentError::Stopped {
                 stage: "sewing",
-                steps,
+                steps: attempt.steps + steps,
             });
         }
     }
@@ -405,16 +565,16 @@ pub fn sew(
             until_out: p.until_out,
         })
         .collect();
-    Ok(Sewn {
+    Ok(Some(Sewn {
         welded,
         passing,
         attachments,
         fabrics,
         triangle_fabric,
         report: SewingReport {
-            steps,
-            seconds: start.elapsed().as_secs_f64(),
-            cg_iterations: cg,
+            steps: attempt.steps + steps,
+            seconds: attempt.began.elapsed().as_secs_f64(),
+            cg_iterations: attempt.cg + cg,
             max_gap: gap,
             pull,
             stalls,
@@ -422,7 +582,7 @@ pub fn sew(
             weld_crossings,
         },
         bending_calibration: sim.bending_calibration().to_vec(),
-    })
+    }))
 }
 
 /// The pieces passing the body's thin parts while sewn: the panels dressing the legs for
