@@ -209,9 +209,11 @@ pub const MAX_STARTS_OVER: usize = 2;
 /// iterations taken and the stalls met, and the failure that ended the last.
 #[derive(Debug)]
 struct Attempt {
-    /// The seams the body held open, each in an attempt before, and those round them
-    /// (see [`Garment::seams_around`]).
+    /// The seams the body held open, one in each attempt before: each must be clear as
+    /// placed for this attempt to run.
     held: Vec<usize>,
+    /// Those and the seams round them (see [`Garment::seams_around`]), drawn shut first
+    /// where clear as placed.
     first: Vec<usize>,
     steps: u64,
     cg: usize,
