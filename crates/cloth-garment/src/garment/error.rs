@@ -70,9 +70,10 @@ pub enum GarmentError {
         gap_mm: f64,
         pull_factor: f64,
         weld_mm: f64,
-        /// What lies between the sides of the open pairs of the seam named.
+        /// What lies between the sides of the seam named where they are too far apart to
+        /// weld where they stand (nearer pairs are welded whatever lies between).
         held_by: HeldOpen,
-        /// What lies between the sides of the other seams' open pairs.
+        /// What lies between the sides of the other seams' pairs too far apart to weld.
         others_held_by: HeldOpen,
     },
     /// The observer asked to stop (a user's interrupt, say).
@@ -112,10 +113,12 @@ impl HeldOpen {
     fn of_other_seams(&self) -> String {
         match self {
             Self::Cloth(panels) => format!(
-                "; between the sides of the other open seams lies cloth of panel {}",
+                "; between the sides of the other seams' pairs too far apart to weld lies cloth of panel {}",
                 quoted(panels)
             ),
-            Self::Body => "; between the sides of the other open seams lies the body".into(),
+            Self::Body => {
+                "; between the sides of the other seams' pairs too far apart to weld lies the body".into()
+            }
             Self::Nothing => String::new(),
         }
     }

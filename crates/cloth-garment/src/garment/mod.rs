@@ -285,43 +285,6 @@ impl Garment {
     }
 
     /// The particles of each panel (before sewing, each is of one panel).
-    /// The seams among the panels of seam `seam` and those seamed to either: the seams
-    /// round the ring where its two sides meet (a cuff's to its sleeve, front and back,
-    /// the cuff's and the sleeve's own), `seam` first.
-    pub fn seams_around(&self, seam: usize) -> Vec<usize> {
-        let mut panel_of = vec![usize::MAX; self.mesh.vertex_count()];
-        for (p, members) in self.panel_members().iter().enumerate() {
-            for &i in members {
-                panel_of[i] = p;
-            }
-        }
-        let panels = |s: usize| {
-            self.seams[s]
-                .pairs
-                .first()
-                .map(|&[a, b]| [panel_of[a], panel_of[b]])
-        };
-        let Some(sides) = panels(seam) else {
-            return vec![seam];
-        };
-        let mut near: Vec<usize> = sides.to_vec();
-        for s in 0..self.seams.len() {
-            if let Some([a, b]) = panels(s) {
-                if sides.contains(&a) {
-                    near.push(b);
-                }
-                if sides.contains(&b) {
-                    near.push(a);
-                }
-            }
-        }
-        let mut around = vec![seam];
-        around.extend((0..self.seams.len()).filter(|&s| {
-            s != seam && panels(s).is_some_and(|[a, b]| near.contains(&a) && near.contains(&b))
-        }));
-        around
-    }
-
     pub(crate) fn panel_members(&self) -> Vec<Vec<usize>> {
         let mut members = vec![Vec::new(); self.panel_names.len()];
         let mut seen = vec![false; self.mesh.vertex_count()];
@@ -372,65 +335,5 @@ impl Garment {
             }
         }
         (widest.0, widest.1, widest.2.sqrt())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A 10 cm square panel whose edges, counter-clockwise from the bottom, are named
-    /// `edges`, its corner at `x` m along x.
-    fn square(name: &str, edges: [&str; 4], x: f64) -> String {
-        let x = 100.0 * x;
-        format!(
-            "[[panels]]\nname = \"{name}\"\noutline = [\n\
-             {{ start = [0, 0], name = \"{}\" }},\n{{ start = [10, 0], name = \"{}\" }},\n\
-             {{ start = [10, 10], name = \"{}\" }},\n{{ start = [0, 10], name = \"{}\" }},\n]\n\
-             placement = {{ translation = [{x}, 0, 0] }}\n",
-            edges[0], edges[1], edges[2], edges[3]
-        )
-    }
-
-    fn seam(a: (&str, &str), b: (&str, &str)) -> String {
-        format!(
-            "[[seams]]\na = {{ panel = \"{}\", edge = \"{}\" }}\nb = {{ panel = \"{}\", edge = \"{}\" }}\n",
-            a.0, a.1, b.0, b.1
-        )
-    }
-
-    #[test]
-    fn the_seams_round_a_cuffs_seam_to_its_sleeve_are_the_cuffs_the_sleeves_and_their_joins() {
-        // A bodice with a skirt below and a sleeve of two panels, each ending in a cuff
-        // panel; the seams round the front cuff's to the front sleeve are those among the
-        // cuffs, the sleeve and the bodice the sleeve is sewn to, not the skirt's.
-        let mut text = String::from("units = \"cm\"\n");
-        text += &square("bodice", ["hem", "arm_f", "top", "arm_b"], 0.0);
-        text += &square("skirt", ["hem", "right", "top", "left"], 0.2);
-        for (k, part) in ["sleeve_f", "sleeve_b", "cuff_f", "cuff_b"].iter().enumerate() {
-            text += &square(part, ["end", "under", "top", "over"], 0.4 + 0.2 * k as f64);
-        }
-        let seams = [
-            (("sleeve_f", "top"), ("bodice", "arm_f")),
-            (("sleeve_f", "over"), ("sleeve_b", "over")),
-            (("sleeve_f", "under"), ("sleeve_b", "under")),
-            (("cuff_f", "top"), ("sleeve_f", "end")),
-            (("cuff_b", "top"), ("sleeve_b", "end")),
-            (("cuff_f", "over"), ("cuff_b", "over")),
-            (("cuff_f", "under"), ("cuff_b", "under")),
-            (("bodice", "hem"), ("skirt", "top")),
-            (("sleeve_b", "top"), ("bodice", "arm_b")),
-        ];
-        for (a, b) in seams {
-            text += &seam(a, b);
-        }
-        let pattern = Pattern::from_toml_str(&text, "sleeve.toml").unwrap();
-        let garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
-        assert_eq!(garment.seams.len(), 9);
-        assert_eq!(garment.seams_around(3), vec![3, 0, 1, 2, 4, 5, 6, 8]);
-        // Round the skirt's seam to the bodice: the seams among the skirt, the bodice and
-        // the sleeve panels sewn to it (theirs to the bodice and to each other), not the
-        // cuffs'.
-        assert_eq!(garment.seams_around(7), vec![7, 0, 1, 2, 8]);
     }
 }

@@ -77,7 +77,8 @@ pub enum StallThen {
     Zipped,
     /// With the pull at its strongest and the body between the named seam's own sides,
     /// which were clear of it where the panels were placed, the sewing started over from
-    /// the placed panels with that seam and those round it drawn shut first (see [`sew`]).
+    /// the placed panels with every seam clear as placed drawn shut first and held shut
+    /// (see [`sew`]).
     StartedOver,
 }
 
@@ -122,10 +123,10 @@ pub struct Sewn {
 ///
 /// A seam held open by the body between its own sides, that was clear of it where the
 /// panels were placed, was drawn round the body by the seams that closed before it: the
-/// sewing starts over from the placed panels with that seam and those round it (see
-/// [`Garment::seams_around`]) drawn shut first, each that was clear as placed (at most
-/// [`MAX_STARTS_OVER`] times; the steps of every attempt are counted, and `observe` sees
-/// them all).
+/// sewing starts over from the placed panels, once, with every seam that was clear as
+/// placed drawn shut first and held shut from then on, as GarmentCode's own simulator
+/// joins every seam before its first step; the others are pulled as before (the steps of
+/// both attempts are counted, and `observe` sees them all).
 pub fn sew(
     garment: &Garment,
     panel_fabrics: &[Fabric],
@@ -143,8 +144,7 @@ pub fn sew(
         });
     }
     let mut attempt = Attempt {
-        held: Vec::new(),
-        first: Vec::new(),
+        held: None,
         steps: 0,
         cg: 0,
         stalls: Vec::new(),
@@ -175,7 +175,7 @@ pub fn sew(
             Err(error) => error,
         };
         match held {
-            Some(held) if attempt.held.len() < MAX_STARTS_OVER && !attempt.held.contains(&held.seam) => {
+            Some(held) if attempt.held.is_none() => {
                 attempt.steps += held.steps;
                 attempt.cg += held.cg;
                 attempt.stalls = held.stalls;
@@ -186,12 +186,7 @@ pub fn sew(
                     pull_factor: held.pull_factor,
                     then: StallThen::StartedOver,
                 });
-                attempt.held.push(held.seam);
-                for s in garment.seams_around(held.seam) {
-                    if !attempt.first.contains(&s) {
-                        attempt.first.push(s);
-                    }
-                }
+                attempt.held = Some(held.seam);
                 attempt.failed = Some(error);
             }
             _ => return Err(error),
@@ -199,22 +194,15 @@ pub fn sew(
     }
 }
 
-/// How many times the sewing starts over with a seam the body held open drawn shut first
-/// (see [`sew`]). GarmentCode's rand_1_088 drew its cuffs along and off the arms by the
-/// wide sleeve ends gathered onto them before their own seams closed, and stalled with
-/// the arm between the cuff's seam to the sleeve.
-pub const MAX_STARTS_OVER: usize = 2;
-
-/// The attempts at sewing before this one: the seams to draw shut first, the steps and
-/// iterations taken and the stalls met, and the failure that ended the last.
+/// The attempt at sewing before this one, if any: the seam the body held open, the steps
+/// and iterations taken and the stalls met, and the failure that ended it.
 #[derive(Debug)]
 struct Attempt {
-    /// The seams the body held open, one in each attempt before: each must be clear as
-    /// placed for this attempt to run.
-    held: Vec<usize>,
-    /// Those and the seams round them (see [`Garment::seams_around`]), drawn shut first
-    /// where clear as placed.
-    first: Vec<usize>,
+    /// The seam the body held open (GarmentCode's rand_1_088 drew its cuffs along and off
+    /// the arms by the wide sleeve ends gathered onto them before their own seams closed,
+    /// and stalled with the arm between a cuff's seam to its sleeve): it must be clear as
+    /// placed for this attempt to run, which draws every seam clear as placed shut first.
+    held: Option<usize>,
     steps: u64,
     cg: usize,
     stalls: Vec<SeamStall>,
@@ -233,9 +221,10 @@ struct HeldByBody {
     stalls: Vec<SeamStall>,
 }
 
-/// One attempt at [`sew`], after the steps of `attempt`, drawing its seams shut first;
-/// `None` if cloth or a body lies between their sides where the panels were placed. A
-/// failure with the body between the named seam's own sides is told in `held`.
+/// One attempt at [`sew`], after the steps of `attempt`, drawing every seam clear as
+/// placed shut first if the one before was held open by the body; `None` if cloth or a
+/// body lies between that seam's sides where the panels were placed. A failure with the
+/// body between the named seam's own sides is told in `held`.
 #[allow(clippy::too_many_arguments)]
 fn sew_once<F>(
     garment: &Garment,
@@ -317,26 +306,23 @@ where
         .build()?;
     sim.set_interrupt(interrupt.clone());
     let stall = Stall::new(settings);
-    // The seams the body held open in an attempt before, and those round them, drawn shut
-    // first where nothing lies between their sides as placed, no faster than half a
-    // spacing a step, so the solve spreads the move into the cloth beside them.
+    // After an attempt held open by the body, every seam clear as placed is drawn shut
+    // first, no faster than half a spacing a step, so the solve spreads the move into the
+    // cloth beside them, and held shut: drawn in and let go, a seam was pulled open
+    // again by those the pulls closed later (GarmentCode's rand_1_094 at 3 cm, not held
+    // at its height, a sleeve's top seam round the arm, when only the held seam and those
+    // round it were drawn in).
     let mut draw_first = None;
-    if !attempt.held.is_empty() {
-        let clear = |seams: &[usize]| {
-            let pairs: Vec<[usize; 2]> = seams
-                .iter()
-                .flat_map(|&s| garment.seams[s].pairs.iter().copied())
-                .collect();
-            zip::held_open(garment, &sim, bodies.as_ref(), &pairs) == HeldOpen::Nothing
+    if let Some(held) = attempt.held {
+        let clear = |s: usize| {
+            zip::held_open(garment, &sim, bodies.as_ref(), &garment.seams[s].pairs) == HeldOpen::Nothing
         };
-        if !clear(&attempt.held) {
+        if !clear(held) {
             return Ok(None);
         }
-        let first: Vec<[usize; 2]> = attempt
-            .first
-            .iter()
-            .filter(|&&s| attempt.held.contains(&s) || clear(&[s]))
-            .flat_map(|&s| garment.seams[s].pairs.iter().copied())
+        let first: Vec<[usize; 2]> = (0..garment.seams.len())
+            .filter(|&s| s == held || clear(s))
+            .flat_map(|s| garment.seams[s].pairs.iter().copied())
             .collect();
         let x = sim.positions();
         let widest = first
@@ -344,7 +330,7 @@ where
             .map(|&[a, b]| (x[a] - x[b]).norm())
             .fold(0.0, f64::max);
         let steps = (widest / (0.5 * spacing)).ceil() as u64;
-        draw_first = Some(zip::Zip::new(first, x, steps.max(stall.window)));
+        draw_first = Some(zip::Zip::holding(first, x, steps.max(stall.window)));
     }
     let pull = settings.pull_strain * softest * spacing;
     let mut cg = 0;
@@ -432,7 +418,13 @@ where
                     break;
                 }
                 let open = zip::open_pairs(garment, sim.positions(), settings.gap_tolerance);
-                let held_by = zip::held_open(garment, &sim, bodies.as_ref(), &open);
+                // Pairs within a weld of closing would be welded where they stand, whatever
+                // lies between (weld_crossings clears what that crosses): only the wider
+                // ones must be clear to be drawn in. GarmentCode's rand_1_094 stopped with a
+                // cuff's seam to its sleeve 10 mm open, nothing between, and the sleeve's
+                // gathers folded between the sides of pairs beside it a few mm apart.
+                let wide = zip::open_pairs(garment, sim.positions(), weld);
+                let held_by = zip::held_open(garment, &sim, bodies.as_ref(), &wide);
                 // With nothing between, the seams reach as far as a zip draws in.
                 let reach = if held_by == HeldOpen::Nothing {
                     ZIP_WELD * spacing
@@ -445,7 +437,7 @@ where
                     // have its right cuff held open by the left sleeve, which lay across
                     // the left cuff's seam).
                     let (own, others): (Vec<[usize; 2]>, Vec<[usize; 2]>) =
-                        open.iter().partition(|p| garment.seams[seam].pairs.contains(p));
+                        wide.iter().partition(|p| garment.seams[seam].pairs.contains(p));
                     let own = zip::held_open(garment, &sim, bodies.as_ref(), &own);
                     if own == HeldOpen::Body {
                         *held = Some(HeldByBody {

@@ -55,11 +55,13 @@ pub(super) fn held_open(
 /// pair's gap is cut to at most `(1 - (k + 1) / steps)` of what it was when the zip
 /// began, its sides moved symmetrically about their midpoint. Between the moves the
 /// solve carries the cloth beside them along, so no cell takes the whole jump at once.
+/// A holding zip goes on drawing them together before every step once they are shut.
 pub(super) struct Zip {
     pairs: Vec<[usize; 2]>,
     start: Vec<f64>,
     steps: u64,
     done: u64,
+    hold: bool,
     /// Scratch for the positions moved, kept between steps.
     x: Vec<Vec3>,
 }
@@ -73,7 +75,16 @@ impl Zip {
             start,
             steps: steps.max(1),
             done: 0,
+            hold: false,
             x: Vec::new(),
+        }
+    }
+
+    /// As [`Zip::new`], holding the pairs shut once drawn.
+    pub(super) fn holding(pairs: Vec<[usize; 2]>, x: &[Vec3], steps: u64) -> Self {
+        Self {
+            hold: true,
+            ..Self::new(pairs, x, steps)
         }
     }
 
@@ -84,10 +95,10 @@ impl Zip {
 
     /// Draws the pairs in for the next step (see [`Zip`]).
     pub(super) fn draw(&mut self, sim: &mut Simulation) -> Result<(), ParamError> {
-        if self.finished() {
+        if self.finished() && !self.hold {
             return Ok(());
         }
-        self.done += 1;
+        self.done = (self.done + 1).min(self.steps);
         let left = 1.0 - self.done as f64 / self.steps as f64;
         self.x.clear();
         self.x.extend_from_slice(sim.positions());
@@ -113,6 +124,54 @@ fn draw_pair(x: &mut [Vec3], a: usize, b: usize, gap: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use cloth_core::{Fabric, GridBuilder, SimulationBuilder};
+
+    /// A 3 x 3 sheet, 10 cm square, and its opposite corners as a pair.
+    fn sheet() -> (Simulation, [usize; 2]) {
+        let mesh = GridBuilder::new(3, 3).size(0.1, 0.1).build().unwrap();
+        let sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
+            .build()
+            .unwrap();
+        (sim, [0, 8])
+    }
+
+    fn gap(sim: &Simulation, [a, b]: [usize; 2]) -> f64 {
+        (sim.positions()[a] - sim.positions()[b]).norm()
+    }
+
+    /// Moves `pair` apart by `by` along x, as the cloth round a seam drawn in may.
+    fn pull_apart(sim: &mut Simulation, [a, b]: [usize; 2], by: f64) {
+        let mut x = sim.positions().to_vec();
+        x[a].x -= by;
+        x[b].x += by;
+        sim.set_positions(&x).unwrap();
+    }
+
+    #[test]
+    fn a_holding_zip_draws_its_pairs_in_again_once_shut_and_a_plain_one_lets_them_go() {
+        for hold in [false, true] {
+            let (mut sim, pair) = sheet();
+            let start = gap(&sim, pair);
+            let mut zip = if hold {
+                Zip::holding(vec![pair], sim.positions(), 2)
+            } else {
+                Zip::new(vec![pair], sim.positions(), 2)
+            };
+            zip.draw(&mut sim).unwrap();
+            assert!((gap(&sim, pair) - 0.5 * start).abs() < 1e-12);
+            zip.draw(&mut sim).unwrap();
+            assert!(zip.finished());
+            assert!(gap(&sim, pair) < 1e-12);
+            pull_apart(&mut sim, pair, 0.01);
+            zip.draw(&mut sim).unwrap();
+            let after = gap(&sim, pair);
+            if hold {
+                assert!(after < 1e-12, "held: {after}");
+            } else {
+                assert!(after > 0.019, "let go: {after}");
+            }
+        }
+    }
 
     #[test]
     fn a_pair_drawn_in_keeps_its_midpoint_and_a_pair_already_close_is_left() {
