@@ -198,6 +198,14 @@ fn sew_top(height_slack: Option<f64>) -> Result<cloth::garment::sewing::Sewn, cl
     sew_quietly(&garment, &fabrics, prepared.bodies.clone(), &settings)
 }
 
+/// The stalls at which the sewing started over.
+fn started_over(stalls: &[cloth::garment::sewing::SeamStall]) -> Vec<&cloth::garment::sewing::SeamStall> {
+    stalls
+        .iter()
+        .filter(|s| s.then == StallThen::StartedOver)
+        .collect()
+}
+
 /// The height of `sewn`'s highest particle, m.
 fn top_of(sewn: &cloth::garment::sewing::Sewn) -> f64 {
     sewn.welded
@@ -216,10 +224,7 @@ fn a_top_held_at_its_height_while_sewn_is_sewn_on_the_shoulders_with_its_sleeves
     let top = top_of(&held);
     assert!((1.40..1.46).contains(&top), "top at {top} m");
     assert!(
-        held.report
-            .stalls
-            .iter()
-            .all(|s| s.then != StallThen::StartedOver),
+        started_over(&held.report.stalls).is_empty(),
         "{:?}",
         held.report.stalls
     );
@@ -231,10 +236,7 @@ fn a_top_held_at_its_height_while_sewn_is_sewn_on_the_shoulders_with_its_sleeves
     // under the arms (its top at 1.22 m), which is what the hold is for.
     let unheld = sew_top(None).unwrap();
     let stalls = &unheld.report.stalls;
-    let over: Vec<_> = stalls
-        .iter()
-        .filter(|s| s.then == StallThen::StartedOver)
-        .collect();
+    let over = started_over(stalls);
     assert_eq!(over.len(), 1, "{stalls:?}");
     assert!(over[0].seam.contains("sleeve"), "{over:?}");
     let top = top_of(&unheld);
@@ -261,10 +263,7 @@ fn a_top_whose_cuffs_are_drawn_off_the_arms_starts_over_with_its_seams_drawn_shu
     )
     .unwrap();
     let stalls = &sewn.report.stalls;
-    let over: Vec<_> = stalls
-        .iter()
-        .filter(|s| s.then == StallThen::StartedOver)
-        .collect();
+    let over = started_over(stalls);
     assert_eq!(over.len(), 1, "{stalls:?}");
     assert!(
         over[0].seam.contains("cuff") && over[0].seam.contains("sleeve"),
