@@ -123,7 +123,7 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
                     s.pull_factor
                 ),
                 StallThen::StartedOver => format!(
-                    "the body between its own sides, clear of them as placed: sewn again from the placed panels with this seam drawn shut first (pull at {} times full)",
+                    "the body between its own sides, clear of them as placed: sewn again from the placed panels with every seam clear as placed drawn shut first and held shut (pull at {} times full)",
                     s.pull_factor
                 ),
             };
@@ -145,6 +145,24 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
                 "| {} | {} | {} | {} | {} | {passed} |",
                 c.step, c.seam, c.layer, c.passing, c.pairs
             )?;
+        }
+    }
+    if !report.seams_waited.is_empty() {
+        writeln!(
+            out,
+            "\nSeams placed with the cloth of a panel sewn to neither side between their sides, not pulled until it left:\n\n\
+             | seam | pairs that waited | all pulled after step | how |\n|---|---|---|---|"
+        )?;
+        for w in &report.seams_waited {
+            let after = w
+                .pulled_after
+                .map_or_else(|| "still waiting".to_string(), |s| s.to_string());
+            let how = if w.cleared {
+                "the cloth left"
+            } else {
+                "the other seams had closed or stalled"
+            };
+            writeln!(out, "| {} | {} | {after} | {how} |", w.seam, w.pairs)?;
         }
     }
     if !report.tangles.is_empty() {

@@ -5,12 +5,14 @@ mod caught;
 mod cut_off;
 mod settings;
 mod untangling_at_rest;
+mod waiting;
 mod weld_crossings;
 mod zip;
 
 pub use caught::CaughtLayer;
 pub use settings::{DrapeSettings, SewingSettings};
 pub use untangling_at_rest::UntanglingAtRest;
+pub use waiting::SeamWait;
 pub use weld_crossings::WeldCrossings;
 
 use crate::garment::{Garment, GarmentError, HeldOpen, Welded};
@@ -24,6 +26,7 @@ use cloth_core::{SelfCollision, SimulationBuilder, SolverSettings, StepStats, Ve
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
+use waiting::Waiting;
 
 /// What the sewing stage did.
 #[derive(Debug, Clone, PartialEq)]
@@ -43,6 +46,9 @@ pub struct SewingReport {
     pub caught: Vec<CaughtLayer>,
     /// The cloth's crossings the weld made, and those left after clearing them.
     pub weld_crossings: WeldCrossings,
+    /// The seams with pairs that waited for a stranger's cloth between their sides to
+    /// leave (see `waiting`).
+    pub waited: Vec<SeamWait>,
 }
 
 /// Seams that stopped closing: the widest then, and what was done.
@@ -92,6 +98,8 @@ pub struct SewingProgress<'a> {
     pub stalls: &'a [SeamStall],
     /// The layers found across the seams so far, and whether they have passed.
     pub caught: &'a [CaughtLayer],
+    /// The seams with pairs that waited so far.
+    pub waited: &'a [SeamWait],
 }
 
 /// The garment sewn: its welded mesh at the positions where the seams closed.
@@ -116,8 +124,10 @@ pub struct Sewn {
 /// Sews `garment`, each panel of its fabric in `panel_fabrics`, around the bodies of
 /// `collider`: gravity off, the implicit integrator, a seam pull ramped up over
 /// [`SewingSettings::ramp_time`] to a force that stretches the cloth by at most
-/// [`SewingSettings::pull_strain`], and extra air drag so panels glide into place. Stops
-/// when every seam gap is under the tolerance, then welds. `observe` sees every step (with
+/// [`SewingSettings::pull_strain`], and extra air drag so panels glide into place (pairs
+/// placed with the cloth of a panel sewn to neither side between their sides are not
+/// pulled until it has left, see `waiting`). Stops when every seam gap is under the
+/// tolerance, then welds. `observe` sees every step (with
 /// the widest gap and the stalls so far) and may stop it ([`GarmentError::Stopped`]), as may `interrupt`
 /// inside a step.
 ///
@@ -265,7 +275,7 @@ where
     // spacing of the pairs.
     let shares = garment.seam_shares();
     let spacing = shares.iter().sum::<f64>() / shares.len().max(1) as f64;
-    let seam_weights = shares
+    let seam_weights: Vec<f64> = shares
         .iter()
         .map(|s| if spacing > 0.0 { s / spacing } else { 1.0 })
         .collect();
@@ -298,13 +308,25 @@ where
         .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
         .seams(garment.seam_pairs())
-        .seam_weights(seam_weights)
+        .seam_weights(seam_weights.clone())
         .touching(garment.touching.clone())
         .attachments([attachments.clone(), height_holds(garment, settings.height_slack)].concat())
         .pass_through(sewing_passes(garment))
         .collider(collider)
         .build()?;
     sim.set_interrupt(interrupt.clone());
+    // Pairs with a stranger's cloth between their sides wait for it to leave, in the
+    // first attempt only: starting over, every seam clear as placed is drawn shut within
+    // a few steps, before anything the stranger is sewn to has moved it, and a pair left
+    // waiting is held open by those drawn shut round it (GarmentCode's rand_1_088 at 2.5
+    // cm: its waistband's side seams, the sleeves between, waited 13 steps into the
+    // second attempt, and it failed with the bodice's side seams 58 mm open; not waiting
+    // then, it is sewn).
+    let mut waiting = if attempt.held.is_none() {
+        Waiting::new(garment, &mut sim, seam_weights)?
+    } else {
+        Waiting::none(garment, seam_weights)
+    };
     let stall = Stall::new(settings);
     // After an attempt held open by the body, every seam clear as placed is drawn shut
     // first, no faster than half a spacing a step, so the solve spreads the move into the
@@ -384,19 +406,37 @@ where
             });
         }
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
-        if zip.is_none() && ramp >= 1.0 && gap >= settings.gap_tolerance && stall.stalled(gap, steps) {
-            let caught = catcher.catch(garment, &mut sim, bodies.as_ref(), attempt.steps + steps) > 0;
+        // Pairs waiting for the cloth between their sides to leave (see `waiting`) do not
+        // count for a stall while the others close.
+        let stall_gap = if waiting.any() {
+            waiting.widest_pulled(sim.positions())
+        } else {
+            gap
+        };
+        let all_pulled_closed = waiting.any() && stall_gap < settings.gap_tolerance;
+        if zip.is_none()
+            && ramp >= 1.0
+            && (all_pulled_closed || gap >= settings.gap_tolerance && stall.stalled(stall_gap, steps))
+        {
+            let friction_released = stalls
+                .iter()
+                .any(|s: &SeamStall| s.then == StallThen::FrictionReleased);
+            // Cloth across the waiting pairs is not caught: it is to leave.
+            let caught = !waiting.any()
+                && catcher.catch(garment, &mut sim, bodies.as_ref(), attempt.steps + steps) > 0;
             if caught {
                 sew_on_until = steps + stall.window;
             }
-            if caught && stall_catches < STALL_CATCHES {
+            if waiting.any() && (friction_released || all_pulled_closed) {
+                // The others closed, or stalled with the body's hold let go: the waiting
+                // pairs are pulled too, and the stalls counted afresh.
+                waiting.release(&mut sim, attempt.steps + steps)?;
+                stall.restart();
+            } else if caught && stall_catches < STALL_CATCHES {
                 // Held open by cloth across the seams: a side is let through it, and the
                 // seams have another window before a pull at its strongest gives up.
                 stall_catches += 1;
-            } else if !stalls
-                .iter()
-                .any(|s: &SeamStall| s.then == StallThen::FrictionReleased)
-            {
+            } else if !friction_released {
                 // Held by the body's friction where the panels press on it, which a
                 // stronger pull only presses harder, and at their placed height: let go,
                 // for them to slide round.
@@ -508,6 +548,7 @@ where
         steps += 1;
         cg += stats.cg_iterations;
         (seam, gap) = garment.widest_gap(sim.positions());
+        waiting.update(&mut sim, attempt.steps + steps)?;
         // A raised pull that tears the cloth without diverging goes back as one that
         // diverges does: GarmentCode's rand_1_022 was stretched to 470 % (p99) by pulls
         // of 64 and 256 times, and every step from there diverged, down to the pull's own.
@@ -520,6 +561,7 @@ where
             seam: &garment.seams[seam].name,
             stalls: &stalls,
             caught: catcher.update(&sim),
+            waited: waiting.seams(),
         };
         if observe(&sim, &stats, &progress).is_break() {
             return Err(GarmentError::Stopped {
@@ -574,6 +616,7 @@ where
             stalls,
             caught,
             weld_crossings,
+            waited: waiting.seams().to_vec(),
         },
         bending_calibration: sim.bending_calibration().to_vec(),
     }))
@@ -869,6 +912,11 @@ impl Stall {
             window: (STALL_WINDOW / settings.time_step).ceil().max(1.0) as u64,
             since: None,
         }
+    }
+
+    /// Forgets the gaps seen: the next window starts at the next step.
+    fn restart(&mut self) {
+        self.since = None;
     }
 
     fn stalled(&mut self, gap: f64, step: u64) -> bool {
