@@ -158,6 +158,7 @@ pub fn sew(
         steps: 0,
         cg: 0,
         stalls: Vec::new(),
+        waited: Vec::new(),
         failed: None,
         began: Instant::now(),
     };
@@ -189,6 +190,7 @@ pub fn sew(
                 attempt.steps += held.steps;
                 attempt.cg += held.cg;
                 attempt.stalls = held.stalls;
+                attempt.waited = held.waited;
                 attempt.stalls.push(SeamStall {
                     step: attempt.steps,
                     seam: garment.seams[held.seam].name.clone(),
@@ -216,6 +218,8 @@ struct Attempt {
     steps: u64,
     cg: usize,
     stalls: Vec<SeamStall>,
+    /// The seams that waited in it (see `waiting`).
+    waited: Vec<SeamWait>,
     failed: Option<GarmentError>,
     began: Instant,
 }
@@ -229,6 +233,8 @@ struct HeldByBody {
     steps: u64,
     cg: usize,
     stalls: Vec<SeamStall>,
+    /// The seams that waited in it (see `waiting`).
+    waited: Vec<SeamWait>,
 }
 
 /// One attempt at [`sew`], after the steps of `attempt`, drawing every seam clear as
@@ -325,7 +331,7 @@ where
     let mut waiting = if attempt.held.is_none() {
         Waiting::new(garment, &mut sim, seam_weights)?
     } else {
-        Waiting::none(garment, seam_weights)
+        Waiting::none(garment, seam_weights, attempt.waited.clone())
     };
     let stall = Stall::new(settings);
     // After an attempt held open by the body, every seam clear as placed is drawn shut
@@ -408,10 +414,10 @@ where
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
         // Pairs waiting for the cloth between their sides to leave (see `waiting`) do not
         // count for a stall while the others close.
-        let stall_gap = if waiting.any() {
+        let (stall_seam, stall_gap) = if waiting.any() {
             waiting.widest_pulled(sim.positions())
         } else {
-            gap
+            (seam, gap)
         };
         let all_pulled_closed = waiting.any() && stall_gap < settings.gap_tolerance;
         if zip.is_none()
@@ -427,9 +433,13 @@ where
             if caught {
                 sew_on_until = steps + stall.window;
             }
-            if waiting.any() && (friction_released || all_pulled_closed) {
-                // The others closed, or stalled with the body's hold let go: the waiting
-                // pairs are pulled too, and the stalls counted afresh.
+            if waiting.any() && (all_pulled_closed || friction_released && pull_level.at_most()) {
+                // The others closed, or stalled at the strongest pull: the waiting pairs are
+                // pulled too, and the stalls counted afresh. (Pulled at the first stall
+                // after the body's hold was let go, GarmentCode's rand_1_035 rested with 52
+                // crossings of itself and 12 body edges, against 23 and 0 so; on its male
+                // body its flounces were pulled at step 58, the other flounce still between,
+                // and the sewing failed there.)
                 waiting.release(&mut sim, attempt.steps + steps)?;
                 stall.restart();
             } else if caught && stall_catches < STALL_CATCHES {
@@ -444,8 +454,8 @@ where
                 sim.set_attachments(attachments.clone())?;
                 stalls.push(stall_at(
                     steps,
-                    seam,
-                    gap,
+                    stall_seam,
+                    stall_gap,
                     pull_level.boost,
                     StallThen::FrictionReleased,
                 ));
@@ -487,6 +497,7 @@ where
                             steps,
                             cg,
                             stalls: stalls.clone(),
+                            waited: waiting.seams().to_vec(),
                         });
                     }
                     return Err(GarmentError::Stalled {
@@ -503,7 +514,14 @@ where
                 stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Zipped));
             } else {
                 pull_level.raise();
-                stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Pulled));
+                // The seam that stalled: while pairs wait, the widest of those pulled.
+                stalls.push(stall_at(
+                    steps,
+                    stall_seam,
+                    stall_gap,
+                    pull_level.boost,
+                    StallThen::Pulled,
+                ));
             }
         }
         let force = pull * pull_level.boost * ramp.max(1e-3);

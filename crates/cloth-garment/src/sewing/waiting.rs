@@ -8,10 +8,11 @@
 //! held it there (035 stopped 84 mm open). So a pair whose sides have between them, where
 //! the panels were placed, the cloth of a panel sewn to neither side's panel (but to
 //! another, so the seams move it) is not pulled until nothing lies between them, or until
-//! the other seams have closed or stalled with the body's hold let go (then it is pulled
-//! as any other, and what lies between is met as the sewing meets caught cloth). A panel sewn to a side's panel lies round the seam as
-//! the garment is made (a skirt under its waistband's side seams, a hood over the
-//! shoulders): it is not in the way, and those seams are pulled from the first step.
+//! the other seams have closed or stalled at the strongest pull (then it is pulled as any
+//! other, and what lies between is met as the sewing meets caught cloth). A panel sewn to
+//! a side's panel lies round the seam as the garment is made (a skirt under its
+//! waistband's side seams, a hood over the shoulders): it is not in the way, and those
+//! seams are pulled from the first step. Only the first attempt waits (see `sew_once`).
 
 use crate::garment::Garment;
 use cloth_core::{ParamError, Simulation, Vec3};
@@ -32,11 +33,23 @@ pub struct SeamWait {
 /// The pairs of [`Garment::seam_pairs`] waiting, each pair's own weight, and what waited.
 pub(super) struct Waiting {
     all: Vec<[usize; 2]>,
+    /// The seam of each pair of `all`.
+    seam_of: Vec<usize>,
     weights: Vec<f64>,
     /// Indices into `all` of the pairs waiting, ascending, each with its entry in `seams`.
     pairs: Vec<(usize, usize)>,
     seams: Vec<SeamWait>,
     strangers: Strangers,
+}
+
+/// The seam of each pair of [`Garment::seam_pairs`].
+fn seams_of_pairs(garment: &Garment) -> Vec<usize> {
+    garment
+        .seams
+        .iter()
+        .enumerate()
+        .flat_map(|(s, seam)| std::iter::repeat_n(s, seam.pairs.len()))
+        .collect()
 }
 
 /// Which panels are strangers to a pair: sewn to neither side's panel, but to some other.
@@ -98,12 +111,7 @@ impl Waiting {
         weights: Vec<f64>,
     ) -> Result<Self, ParamError> {
         let all = garment.seam_pairs();
-        let seam_of: Vec<usize> = garment
-            .seams
-            .iter()
-            .enumerate()
-            .flat_map(|(s, seam)| std::iter::repeat_n(s, seam.pairs.len()))
-            .collect();
+        let seam_of = seams_of_pairs(garment);
         let strangers = Strangers::of(garment, &all);
         let mut waiting: Vec<usize> = sim
             .cloth_across(&all)?
@@ -133,6 +141,7 @@ impl Waiting {
             .collect();
         let waiting = Self {
             all,
+            seam_of,
             weights,
             pairs,
             seams,
@@ -142,15 +151,17 @@ impl Waiting {
         Ok(waiting)
     }
 
-    /// No pair of `garment`'s seams waiting, `weights` their shares of the pull.
-    pub(super) fn none(garment: &Garment, weights: Vec<f64>) -> Self {
+    /// No pair of `garment`'s seams waiting, `weights` their shares of the pull, after an
+    /// attempt at sewing in which the seams `waited` did.
+    pub(super) fn none(garment: &Garment, weights: Vec<f64>, waited: Vec<SeamWait>) -> Self {
         let all = garment.seam_pairs();
         Self {
             strangers: Strangers::of(garment, &all),
             all,
+            seam_of: seams_of_pairs(garment),
             weights,
             pairs: Vec::new(),
-            seams: Vec::new(),
+            seams: waited,
         }
     }
 
@@ -164,15 +175,15 @@ impl Waiting {
         &self.seams
     }
 
-    /// The widest gap at `x` of the pairs being pulled, m.
-    pub(super) fn widest_pulled(&self, x: &[Vec3]) -> f64 {
+    /// The seam with the widest gap at `x` of the pairs being pulled, and the gap, m.
+    pub(super) fn widest_pulled(&self, x: &[Vec3]) -> (usize, f64) {
         let mut waiting = self.pairs.iter().map(|&(k, _)| k).peekable();
-        let mut widest = 0.0f64;
+        let mut widest = (0, 0.0f64);
         for (k, &[a, b]) in self.all.iter().enumerate() {
             if waiting.peek() == Some(&k) {
                 waiting.next();
-            } else {
-                widest = widest.max((x[a] - x[b]).norm());
+            } else if (x[a] - x[b]).norm() > widest.1 {
+                widest = (self.seam_of[k], (x[a] - x[b]).norm());
             }
         }
         widest
@@ -227,6 +238,7 @@ impl Waiting {
         }
     }
 
+    /// Sets the pull's weights in `sim`: none for the pairs waiting.
     fn set_weights(&self, sim: &mut Simulation) -> Result<(), ParamError> {
         let mut weights = self.weights.clone();
         for &(k, _) in &self.pairs {
@@ -357,11 +369,12 @@ b = {{ panel = "back", edge = "right" }}
         }
         assert!(waiting.any(), "the stranger is still there");
         assert!(gap(&garment, &sim, 1) < 0.9 * left, "the left side is pulled");
-        let widest = waiting.widest_pulled(sim.positions());
+        let (seam, widest) = waiting.widest_pulled(sim.positions());
+        assert_eq!(seam, 1);
         assert!(widest < gap(&garment, &sim, 0));
         // The waiting pairs are not pulled: the widest of the right side keeps its gap.
         assert!((gap(&garment, &sim, 0) - right).abs() < 0.1 * right);
-        // The stranger taken away, the pairs are pulled from the next step on.
+        // The stranger taken away, the pairs are let go.
         let stranger: Vec<usize> = garment.panel_members()[2].clone();
         let mut x = sim.positions().to_vec();
         stranger.iter().for_each(|&i| x[i].x += 1.0);
@@ -371,8 +384,9 @@ b = {{ panel = "back", edge = "right" }}
         assert_eq!(waiting.seams()[0].pulled_after, Some(5));
         assert!(waiting.seams()[0].cleared);
         let right = gap(&garment, &sim, 0);
-        for _ in 0..5 {
+        for step in 6..=10 {
             sim.step().unwrap();
+            waiting.update(&mut sim, step).unwrap();
         }
         assert!(gap(&garment, &sim, 0) < 0.9 * right, "the right side is pulled");
     }
