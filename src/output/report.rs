@@ -160,7 +160,7 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             let how = if w.cleared {
                 "the cloth left"
             } else {
-                "the other seams had closed or stalled"
+                "the other seams had closed, or stalled at the strongest pull"
             };
             writeln!(out, "| {} | {} | {after} | {how} |", w.seam, w.pairs)?;
         }

@@ -26,7 +26,7 @@ pub struct SeamWait {
     /// The sewing step after which the last of them was pulled; `None` while one waits.
     pub pulled_after: Option<u64>,
     /// Whether the cloth had left every one of them by then (if not, they were pulled when
-    /// the other seams had closed or stalled).
+    /// the other seams had closed, or stalled at the strongest pull).
     pub cleared: bool,
 }
 
