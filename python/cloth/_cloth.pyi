@@ -313,9 +313,8 @@ class SewnGarment:
     def report(self) -> dict[str, Any]:
         """Steps, seconds, CG iterations, the widest gap at welding (m), the pull (N); the
         seams that stalled and how they closed (``seam_stalls``), the layers found across
-        them (``caught_layers``), the seams that waited for a stranger's cloth between their
-        sides to leave (``seams_waited``) and the crossings the weld made
-        (``weld_crossings``), as a scene's report.json gives them."""
+        them (``caught_layers``) and the crossings the weld made (``weld_crossings``), as a
+        scene's report.json gives them."""
     def drape(
         self,
         bodies: Sequence[Body],

@@ -147,24 +147,6 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             )?;
         }
     }
-    if !report.seams_waited.is_empty() {
-        writeln!(
-            out,
-            "\nSeams placed with the cloth of a panel sewn to neither side between their sides, not pulled until it left:\n\n\
-             | seam | pairs that waited | all pulled after step | how |\n|---|---|---|---|"
-        )?;
-        for w in &report.seams_waited {
-            let after = w
-                .pulled_after
-                .map_or_else(|| "still waiting".to_string(), |s| s.to_string());
-            let how = if w.cleared {
-                "the cloth left"
-            } else {
-                "the other seams had closed, or stalled at the strongest pull"
-            };
-            writeln!(out, "| {} | {} | {after} | {how} |", w.seam, w.pairs)?;
-        }
-    }
     if !report.tangles.is_empty() {
         writeln!(
             out,

@@ -123,9 +123,6 @@ pub struct RunReport {
     /// Layers of cloth found across the seams' sides while sewn (a hood's edge between the
     /// shoulders), and the panel let through each (garments only).
     pub caught_layers: Vec<crate::garment::sewing::CaughtLayer>,
-    /// Seams with pairs placed with the cloth of a panel sewn to neither side between their
-    /// sides, that waited for it to leave before being pulled (garments only).
-    pub seams_waited: Vec<crate::garment::sewing::SeamWait>,
     /// The cloth's crossings the weld made, and those left after clearing them (garments
     /// that were sewn only).
     pub weld_crossings: Option<crate::garment::sewing::WeldCrossings>,

@@ -47,7 +47,6 @@ impl Prepared {
         let mut gap = None;
         let mut seam_stalls = Vec::new();
         let mut caught_layers = Vec::new();
-        let mut seams_waited = Vec::new();
         let mut weld_crossings = None;
         let mut untangling_at_rest = None;
         let mut attached_particles = None;
@@ -83,9 +82,6 @@ impl Prepared {
                         if progress.caught != caught_layers.as_slice() {
                             caught_layers = progress.caught.to_vec();
                         }
-                        if progress.waited != seams_waited.as_slice() {
-                            seams_waited = progress.waited.to_vec();
-                        }
                         rec.step(sim, s)
                     },
                 );
@@ -95,7 +91,6 @@ impl Prepared {
                         gap = Some(sewn.report.max_gap);
                         weld_crossings = Some(sewn.report.weld_crossings);
                         caught_layers = sewn.report.caught.clone();
-                        seams_waited = sewn.report.waited.clone();
                         rec.begin("draping", drape_settings.max_steps);
                         match drape(
                             &sewn,
@@ -198,7 +193,6 @@ impl Prepared {
             largest_seam_gap: gap,
             seam_stalls,
             caught_layers,
-            seams_waited,
             weld_crossings,
             untangling_at_rest,
             attached_particles,

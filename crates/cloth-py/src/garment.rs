@@ -226,9 +226,8 @@ impl SewnGarment {
     }
     /// Steps, seconds, CG iterations, the widest gap at welding (m), the pull per seam pair
     /// (N); the seams that stalled and how they closed (`seam_stalls`), the layers found
-    /// across them (`caught_layers`), the seams that waited for a stranger's cloth between
-    /// their sides to leave (`seams_waited`) and the crossings the weld made
-    /// (`weld_crossings`), as a scene's report.json gives them.
+    /// across them (`caught_layers`) and the crossings the weld made (`weld_crossings`), as
+    /// a scene's report.json gives them.
     #[getter]
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let r = &self.inner.report;
@@ -240,7 +239,6 @@ impl SewnGarment {
         d.set_item("pull", r.pull)?;
         d.set_item("seam_stalls", json_to_python(py, &r.stalls)?)?;
         d.set_item("caught_layers", json_to_python(py, &r.caught)?)?;
-        d.set_item("seams_waited", json_to_python(py, &r.waited)?)?;
         d.set_item("weld_crossings", json_to_python(py, &r.weld_crossings)?)?;
         Ok(d)
     }

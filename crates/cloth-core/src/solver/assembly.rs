@@ -49,8 +49,6 @@ struct HingeElement {
 #[derive(Debug, Clone)]
 struct SeamElement {
     v: [u32; 2],
-    /// The pair's place among the seams given (the elements are reordered by colour).
-    pair: u32,
     weight: f64,
     slots: [u32; 4],
 }
@@ -210,10 +208,8 @@ impl ForceModel {
         let seams: Vec<SeamElement> = seams
             .iter()
             .zip(seam_weights)
-            .enumerate()
-            .map(|(pair, (v, &weight))| SeamElement {
+            .map(|(v, &weight)| SeamElement {
                 v: v.map(|i| i as u32),
-                pair: pair as u32,
                 weight,
                 slots: slots(v).try_into().expect("4 slots"),
             })
@@ -288,13 +284,6 @@ impl ForceModel {
     }
     pub fn seam_pull(&self) -> SeamPull {
         self.seam_pull
-    }
-    /// Sets each seam pair's share of the pull, `weights[k]` for the `k`-th pair given
-    /// (as many, each finite and >= 0: the caller checks).
-    pub fn set_seam_weights(&mut self, weights: &[f64]) {
-        for e in &mut self.seams {
-            e.weight = weights[e.pair as usize];
-        }
     }
     /// Stiffness of the penalties holding the cloth (attachments, a body's sharp
     /// features), N/m: ten times the stiffest fabric's membrane.
@@ -654,7 +643,16 @@ mod tests {
             exponent: 2.0,
         };
         // One seam pair within the pull's reach and two beyond it, sharing a particle.
-        let (mut model, matrix) = model_of(&mesh, vec![fabric], &WEIGHTS);
+        let (mut model, matrix) = ForceModel::new(
+            &mesh,
+            vec![fabric],
+            &vec![0; mesh.triangles().len()],
+            &SEAMS,
+            &WEIGHTS,
+            &attachments(&mesh),
+            None,
+            &vec![false; mesh.vertex_count()],
+        );
         model.set_seam_pull(SeamPull {
             stiffness: 50.0,
             reach: 0.05,
@@ -670,21 +668,6 @@ mod tests {
             .map(|_| Vec3::from_fn(|_, _| rng.random_range(-0.5..0.5)))
             .collect();
         (mesh, model, matrix, x, v)
-    }
-
-    /// The model of `mesh` in the first of `fabrics`, with [`SEAMS`] of `weights` and
-    /// [`attachments`], nothing pinned.
-    fn model_of(mesh: &ClothMesh, fabrics: Vec<Fabric>, weights: &[f64]) -> (ForceModel, BlockSparse) {
-        ForceModel::new(
-            mesh,
-            fabrics,
-            &vec![0; mesh.triangles().len()],
-            &SEAMS,
-            weights,
-            &attachments(mesh),
-            None,
-            &vec![false; mesh.vertex_count()],
-        )
     }
 
     /// Two attachments holding particle 5 (each plane 2 cm past it, more than the crumpling
@@ -970,38 +953,6 @@ mod tests {
         }
         // Matrix: h c times the pair's identity blocks (the damping part of h^2 + h beta).
         assert!((m1 - m0 - blocks).amax() < 1e-12);
-    }
-
-    #[test]
-    fn seam_weights_set_later_are_those_a_model_built_with_them_has() {
-        let (mesh, mut model, mut matrix, x, v) = setup();
-        let n = x.len();
-        let zero = Vec3::zeros();
-        let mut run = |model: &mut ForceModel| {
-            matrix.blocks_mut().iter_mut().for_each(|b| *b = Mat3::zeros());
-            let (mut f, mut hv) = (vec![zero; n], vec![zero; n]);
-            let target = StiffnessTarget {
-                matrix: &mut matrix,
-                h: 0.01,
-            };
-            model.evaluate(&x, &v, &zero, &zero, &mut f, &mut hv, Some(target), false);
-            (f, matrix.to_dense())
-        };
-        // Each pair's own weight, wherever colouring put its element: the first not pulled.
-        let weights = [0.0, 3.0, 0.25];
-        model.set_seam_weights(&weights);
-        let (f_set, m_set) = run(&mut model);
-        let (mut built, _) = model_of(&mesh, model.fabrics().to_vec(), &weights);
-        built.set_seam_pull(model.seam_pull());
-        let (f_built, m_built) = run(&mut built);
-        for i in 0..n {
-            assert!((f_set[i] - f_built[i]).norm() < 1e-12, "particle {i}");
-        }
-        assert!((m_set - m_built).amax() < 1e-12);
-        // And they differ from the first weights' (the test can tell).
-        model.set_seam_weights(&WEIGHTS);
-        let (f_first, _) = run(&mut model);
-        assert!((0..n).any(|i| (f_first[i] - f_set[i]).norm() > 1e-6));
     }
 
     #[test]

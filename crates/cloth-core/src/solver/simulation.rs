@@ -218,7 +218,19 @@ impl SimulationBuilder {
         )?;
         check_attachments(&self.attachments, n)?;
         let seam_weights = self.seam_weights.unwrap_or_else(|| vec![1.0; self.seams.len()]);
-        check_seam_weights(&seam_weights, self.seams.len())?;
+        ParamError::check(
+            seam_weights.len() == self.seams.len(),
+            "seam_weights",
+            seam_weights.len() as f64,
+            "one weight per seam pair",
+        )?;
+        if let Some(&w) = seam_weights.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
+            return Err(ParamError::OutOfRange {
+                name: "seam_weights",
+                value: w,
+                expected: "finite weights >= 0",
+            });
+        }
         if let Some(kappa) = &self.bending_calibration {
             ParamError::check(
                 kappa.len() == self.fabrics.len(),
@@ -460,13 +472,6 @@ impl Simulation {
     }
     pub fn seam_pull(&self) -> SeamPull {
         self.model.seam_pull()
-    }
-    /// Sets each seam pair's share of the pull from the next step on, as given to the
-    /// builder ([`SimulationBuilder::seam_weights`]): zero, a pair is not pulled.
-    pub fn set_seam_weights(&mut self, weights: &[f64]) -> Result<(), ParamError> {
-        check_seam_weights(weights, self.seams.len())?;
-        self.model.set_seam_weights(weights);
-        Ok(())
     }
     /// Changes the integrator or its settings between steps.
     pub fn set_settings(&mut self, settings: SolverSettings) -> Result<(), ParamError> {
@@ -1258,24 +1263,6 @@ fn kinetic_energy(masses: &[f64], v: &[Vec3]) -> f64 {
         .zip(v)
         .map(|(m, vi)| m * vi.norm_squared())
         .sum::<f64>()
-}
-
-/// One weight per seam pair of `pairs`, each finite and >= 0.
-fn check_seam_weights(weights: &[f64], pairs: usize) -> Result<(), ParamError> {
-    ParamError::check(
-        weights.len() == pairs,
-        "seam_weights",
-        weights.len() as f64,
-        "one weight per seam pair",
-    )?;
-    match weights.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
-        Some(&w) => Err(ParamError::OutOfRange {
-            name: "seam_weights",
-            value: w,
-            expected: "finite weights >= 0",
-        }),
-        None => Ok(()),
-    }
 }
 
 /// Attachments on particles of a cloth of `n`, with finite points and unit directions.

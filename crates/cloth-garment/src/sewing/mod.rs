@@ -5,14 +5,12 @@ mod caught;
 mod cut_off;
 mod settings;
 mod untangling_at_rest;
-mod waiting;
 mod weld_crossings;
 mod zip;
 
 pub use caught::CaughtLayer;
 pub use settings::{DrapeSettings, SewingSettings};
 pub use untangling_at_rest::UntanglingAtRest;
-pub use waiting::SeamWait;
 pub use weld_crossings::WeldCrossings;
 
 use crate::garment::{Garment, GarmentError, HeldOpen, Welded};
@@ -26,7 +24,6 @@ use cloth_core::{SelfCollision, SimulationBuilder, SolverSettings, StepStats, Ve
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
-use waiting::Waiting;
 
 /// What the sewing stage did.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,9 +43,6 @@ pub struct SewingReport {
     pub caught: Vec<CaughtLayer>,
     /// The cloth's crossings the weld made, and those left after clearing them.
     pub weld_crossings: WeldCrossings,
-    /// The seams with pairs that waited for a stranger's cloth between their sides to
-    /// leave (see `waiting`).
-    pub waited: Vec<SeamWait>,
 }
 
 /// Seams that stopped closing: the widest then, and what was done.
@@ -98,8 +92,6 @@ pub struct SewingProgress<'a> {
     pub stalls: &'a [SeamStall],
     /// The layers found across the seams so far, and whether they have passed.
     pub caught: &'a [CaughtLayer],
-    /// The seams with pairs that waited so far.
-    pub waited: &'a [SeamWait],
 }
 
 /// The garment sewn: its welded mesh at the positions where the seams closed.
@@ -124,10 +116,8 @@ pub struct Sewn {
 /// Sews `garment`, each panel of its fabric in `panel_fabrics`, around the bodies of
 /// `collider`: gravity off, the implicit integrator, a seam pull ramped up over
 /// [`SewingSettings::ramp_time`] to a force that stretches the cloth by at most
-/// [`SewingSettings::pull_strain`], and extra air drag so panels glide into place (pairs
-/// placed with the cloth of a panel sewn to neither side between their sides are not
-/// pulled until it has left, see `waiting`). Stops when every seam gap is under the
-/// tolerance, then welds. `observe` sees every step (with
+/// [`SewingSettings::pull_strain`], and extra air drag so panels glide into place. Stops
+/// when every seam gap is under the tolerance, then welds. `observe` sees every step (with
 /// the widest gap and the stalls so far) and may stop it ([`GarmentError::Stopped`]), as may `interrupt`
 /// inside a step.
 ///
@@ -158,7 +148,6 @@ pub fn sew(
         steps: 0,
         cg: 0,
         stalls: Vec::new(),
-        waited: Vec::new(),
         failed: None,
         began: Instant::now(),
     };
@@ -190,7 +179,6 @@ pub fn sew(
                 attempt.steps += held.steps;
                 attempt.cg += held.cg;
                 attempt.stalls = held.stalls;
-                attempt.waited = held.waited;
                 attempt.stalls.push(SeamStall {
                     step: attempt.steps,
                     seam: garment.seams[held.seam].name.clone(),
@@ -218,8 +206,6 @@ struct Attempt {
     steps: u64,
     cg: usize,
     stalls: Vec<SeamStall>,
-    /// The seams that waited in it (see `waiting`).
-    waited: Vec<SeamWait>,
     failed: Option<GarmentError>,
     began: Instant,
 }
@@ -233,8 +219,6 @@ struct HeldByBody {
     steps: u64,
     cg: usize,
     stalls: Vec<SeamStall>,
-    /// The seams that waited in it (see `waiting`).
-    waited: Vec<SeamWait>,
 }
 
 /// One attempt at [`sew`], after the steps of `attempt`, drawing every seam clear as
@@ -281,7 +265,7 @@ where
     // spacing of the pairs.
     let shares = garment.seam_shares();
     let spacing = shares.iter().sum::<f64>() / shares.len().max(1) as f64;
-    let seam_weights: Vec<f64> = shares
+    let seam_weights = shares
         .iter()
         .map(|s| if spacing > 0.0 { s / spacing } else { 1.0 })
         .collect();
@@ -314,25 +298,13 @@ where
         .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
         .seams(garment.seam_pairs())
-        .seam_weights(seam_weights.clone())
+        .seam_weights(seam_weights)
         .touching(garment.touching.clone())
         .attachments([attachments.clone(), height_holds(garment, settings.height_slack)].concat())
         .pass_through(sewing_passes(garment))
         .collider(collider)
         .build()?;
     sim.set_interrupt(interrupt.clone());
-    // Pairs with a stranger's cloth between their sides wait for it to leave, in the
-    // first attempt only: starting over, every seam clear as placed is drawn shut within
-    // a few steps, before anything the stranger is sewn to has moved it, and a pair left
-    // waiting is held open by those drawn shut round it (GarmentCode's rand_1_088 at 2.5
-    // cm: its waistband's side seams, the sleeves between, waited 13 steps into the
-    // second attempt, and it failed with the bodice's side seams 58 mm open; not waiting
-    // then, it is sewn).
-    let mut waiting = if attempt.held.is_none() {
-        Waiting::new(garment, &mut sim, seam_weights)?
-    } else {
-        Waiting::none(garment, seam_weights, attempt.waited.clone())
-    };
     let stall = Stall::new(settings);
     // After an attempt held open by the body, every seam clear as placed is drawn shut
     // first, no faster than half a spacing a step, so the solve spreads the move into the
@@ -412,41 +384,19 @@ where
             });
         }
         let ramp = (sim.time() / settings.ramp_time).min(1.0);
-        // Pairs waiting for the cloth between their sides to leave (see `waiting`) do not
-        // count for a stall while the others close.
-        let (stall_seam, stall_gap) = if waiting.any() {
-            waiting.widest_pulled(sim.positions())
-        } else {
-            (seam, gap)
-        };
-        let all_pulled_closed = waiting.any() && stall_gap < settings.gap_tolerance;
-        if zip.is_none()
-            && ramp >= 1.0
-            && (all_pulled_closed || gap >= settings.gap_tolerance && stall.stalled(stall_gap, steps))
-        {
-            let friction_released = stalls
-                .iter()
-                .any(|s: &SeamStall| s.then == StallThen::FrictionReleased);
-            // Cloth across the waiting pairs is not caught: it is to leave.
-            let caught = !waiting.any()
-                && catcher.catch(garment, &mut sim, bodies.as_ref(), attempt.steps + steps) > 0;
+        if zip.is_none() && ramp >= 1.0 && gap >= settings.gap_tolerance && stall.stalled(gap, steps) {
+            let caught = catcher.catch(garment, &mut sim, bodies.as_ref(), attempt.steps + steps) > 0;
             if caught {
                 sew_on_until = steps + stall.window;
             }
-            if waiting.any() && (all_pulled_closed || friction_released && pull_level.at_most()) {
-                // The others closed, or stalled at the strongest pull: the waiting pairs are
-                // pulled too, and the stalls counted afresh. (Pulled at the first stall
-                // after the body's hold was let go, GarmentCode's rand_1_035 rested with 52
-                // crossings of itself and 12 body edges, against 23 and 0 so; on its male
-                // body its flounces were pulled at step 58, the other flounce still between,
-                // and the sewing failed there.)
-                waiting.release(&mut sim, attempt.steps + steps)?;
-                stall.restart();
-            } else if caught && stall_catches < STALL_CATCHES {
+            if caught && stall_catches < STALL_CATCHES {
                 // Held open by cloth across the seams: a side is let through it, and the
                 // seams have another window before a pull at its strongest gives up.
                 stall_catches += 1;
-            } else if !friction_released {
+            } else if !stalls
+                .iter()
+                .any(|s: &SeamStall| s.then == StallThen::FrictionReleased)
+            {
                 // Held by the body's friction where the panels press on it, which a
                 // stronger pull only presses harder, and at their placed height: let go,
                 // for them to slide round.
@@ -454,8 +404,8 @@ where
                 sim.set_attachments(attachments.clone())?;
                 stalls.push(stall_at(
                     steps,
-                    stall_seam,
-                    stall_gap,
+                    seam,
+                    gap,
                     pull_level.boost,
                     StallThen::FrictionReleased,
                 ));
@@ -497,7 +447,6 @@ where
                             steps,
                             cg,
                             stalls: stalls.clone(),
-                            waited: waiting.seams().to_vec(),
                         });
                     }
                     return Err(GarmentError::Stalled {
@@ -514,14 +463,7 @@ where
                 stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Zipped));
             } else {
                 pull_level.raise();
-                // The seam that stalled: while pairs wait, the widest of those pulled.
-                stalls.push(stall_at(
-                    steps,
-                    stall_seam,
-                    stall_gap,
-                    pull_level.boost,
-                    StallThen::Pulled,
-                ));
+                stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Pulled));
             }
         }
         let force = pull * pull_level.boost * ramp.max(1e-3);
@@ -566,7 +508,6 @@ where
         steps += 1;
         cg += stats.cg_iterations;
         (seam, gap) = garment.widest_gap(sim.positions());
-        waiting.update(&mut sim, attempt.steps + steps)?;
         // A raised pull that tears the cloth without diverging goes back as one that
         // diverges does: GarmentCode's rand_1_022 was stretched to 470 % (p99) by pulls
         // of 64 and 256 times, and every step from there diverged, down to the pull's own.
@@ -579,7 +520,6 @@ where
             seam: &garment.seams[seam].name,
             stalls: &stalls,
             caught: catcher.update(&sim),
-            waited: waiting.seams(),
         };
         if observe(&sim, &stats, &progress).is_break() {
             return Err(GarmentError::Stopped {
@@ -634,7 +574,6 @@ where
             stalls,
             caught,
             weld_crossings,
-            waited: waiting.seams().to_vec(),
         },
         bending_calibration: sim.bending_calibration().to_vec(),
     }))
@@ -930,11 +869,6 @@ impl Stall {
             window: (STALL_WINDOW / settings.time_step).ceil().max(1.0) as u64,
             since: None,
         }
-    }
-
-    /// Forgets the gaps seen: the next window starts at the next step.
-    fn restart(&mut self) {
-        self.since = None;
     }
 
     fn stalled(&mut self, gap: f64, step: u64) -> bool {
