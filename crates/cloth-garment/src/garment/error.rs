@@ -91,7 +91,8 @@ pub enum GarmentError {
 /// they stopped closing: what the seams would have to go round or through.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum HeldOpen {
-    /// Cloth of these panels (named, each once): a layer the seam closed on.
+    /// Cloth of these panels (named, each once): a layer the seam closed on; such seams
+    /// are welded over it when near enough.
     Cloth(Vec<String>),
     /// A body: the cloth between the sides is too short to go round it.
     Body,
