@@ -425,16 +425,18 @@ where
                 // ones are looked between. GarmentCode's rand_1_094 stopped with a cuff's
                 // seam to its sleeve 10 mm open, nothing between, and the sleeve's gathers
                 // folded between the sides of pairs beside it a few mm apart.
-                let wide = zip::open_pairs(garment, sim.positions(), weld);
-                let (held_by, through_body) = if gap <= weld {
-                    (HeldOpen::Nothing, false)
+                let wide = if gap <= weld {
+                    Vec::new()
                 } else {
-                    (
-                        zip::held_open(garment, &sim, bodies.as_ref(), &wide),
-                        zip::through_body(&sim, bodies.as_ref(), &wide),
-                    )
+                    zip::open_pairs(garment, sim.positions(), weld)
                 };
-                match AtStrongest::choose(gap, weld, ZIP_WELD * spacing, &held_by, through_body) {
+                // Cloth found across any pair hides whether the body lies across another.
+                let (cloth, body) = match zip::held_open(garment, &sim, bodies.as_ref(), &wide) {
+                    HeldOpen::Cloth(_) => (true, zip::through_body(&sim, bodies.as_ref(), &wide)),
+                    HeldOpen::Body => (false, true),
+                    HeldOpen::Nothing => (false, false),
+                };
+                match AtStrongest::choose(gap, weld, ZIP_WELD * spacing, cloth, body) {
                     AtStrongest::Weld => {
                         stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Welded));
                         break;

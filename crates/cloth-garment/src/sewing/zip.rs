@@ -70,28 +70,28 @@ pub(super) enum AtStrongest {
 }
 
 impl AtStrongest {
-    /// Chosen by the widest gap and what lies between the open pairs' sides: `held_by`
-    /// over the pairs wider than `weld` (m; a weld where they stand moves each particle
-    /// at most half that), and whether any of those passes through a body. Up to `weld`
-    /// apart they are welded whatever lies between (the weld's crossings are cleared).
-    /// Up to `zip` apart, with nothing between they are zipped; with only cloth between,
-    /// zipped they would be drawn through it as the self-collision holds them back, so
-    /// they are welded where they stand and the crossings the weld makes are let through
-    /// in the drape, as a weld's nearer ones are (GarmentCode's rand_2_012, a side seam
-    /// 5.9 mm open over its sleeve's cloth, and rand_4_010, a sleeve's seam to its bodice
-    /// 8.4 mm open over the sleeve's own cloth, both came to rest clean). A body between
-    /// cannot be passed: beyond `weld` the sewing fails.
-    pub(super) fn choose(gap: f64, weld: f64, zip: f64, held_by: &HeldOpen, through_body: bool) -> Self {
+    /// Chosen by the widest gap and what lies between the sides of the pairs wider than
+    /// `weld` (m; a weld where they stand moves each particle at most half that): `cloth`
+    /// across any of them, the `body` across any. Up to `weld` apart they are welded
+    /// whatever lies between (the weld's crossings are cleared). Up to `zip` apart, with
+    /// nothing between they are zipped; with only cloth between, zipped they would be
+    /// drawn through it as the self-collision holds them back, so they are welded where
+    /// they stand and the crossings the weld makes are let through in the drape, as a
+    /// weld's nearer ones are (GarmentCode's rand_2_012, a side seam 5.9 mm open over its
+    /// sleeve's cloth, and rand_4_010, a sleeve's seam to its bodice 8.4 mm open over the
+    /// sleeve's own cloth, both came to rest clean). A body between cannot be passed:
+    /// beyond `weld` the sewing fails.
+    pub(super) fn choose(gap: f64, weld: f64, zip: f64, cloth: bool, body: bool) -> Self {
         if gap <= weld {
             Self::Weld
-        } else if through_body || *held_by == HeldOpen::Body {
+        } else if body {
             Self::Fail { reach: weld }
         } else if gap > zip {
             Self::Fail { reach: zip }
-        } else if *held_by == HeldOpen::Nothing {
-            Self::Zip
-        } else {
+        } else if cloth {
             Self::Weld
+        } else {
+            Self::Zip
         }
     }
 }
@@ -221,27 +221,20 @@ mod tests {
     #[test]
     fn seams_stalled_at_the_strongest_pull_are_welded_zipped_or_failed_by_their_gap_and_what_lies_between() {
         let (weld, zip) = (0.005, 0.01);
-        let cloth = HeldOpen::Cloth(vec!["sleeve".into()]);
-        let choose = |gap, held_by: &HeldOpen, body| AtStrongest::choose(gap, weld, zip, held_by, body);
+        let choose = |gap, cloth, body| AtStrongest::choose(gap, weld, zip, cloth, body);
         // Within a weld's reach: welded, whatever lies between.
-        for held_by in [&HeldOpen::Nothing, &cloth, &HeldOpen::Body] {
-            assert_eq!(choose(0.004, held_by, true), AtStrongest::Weld);
+        for (cloth, body) in [(false, false), (true, false), (false, true), (true, true)] {
+            assert_eq!(choose(0.004, cloth, body), AtStrongest::Weld);
         }
         // Beyond it, within a zip's: nothing between is zipped, cloth alone welded over.
-        assert_eq!(choose(0.008, &HeldOpen::Nothing, false), AtStrongest::Zip);
-        assert_eq!(choose(0.008, &cloth, false), AtStrongest::Weld);
-        // A body between, said so or found across a pair beside cloth, is never passed.
-        assert_eq!(
-            choose(0.008, &HeldOpen::Body, true),
-            AtStrongest::Fail { reach: weld }
-        );
-        assert_eq!(choose(0.008, &cloth, true), AtStrongest::Fail { reach: weld });
+        assert_eq!(choose(0.008, false, false), AtStrongest::Zip);
+        assert_eq!(choose(0.008, true, false), AtStrongest::Weld);
+        // A body between, alone or beside cloth, is never passed.
+        assert_eq!(choose(0.008, false, true), AtStrongest::Fail { reach: weld });
+        assert_eq!(choose(0.008, true, true), AtStrongest::Fail { reach: weld });
         // Beyond a zip's reach, nothing closes them.
-        assert_eq!(
-            choose(0.012, &HeldOpen::Nothing, false),
-            AtStrongest::Fail { reach: zip }
-        );
-        assert_eq!(choose(0.012, &cloth, false), AtStrongest::Fail { reach: zip });
+        assert_eq!(choose(0.012, false, false), AtStrongest::Fail { reach: zip });
+        assert_eq!(choose(0.012, true, false), AtStrongest::Fail { reach: zip });
     }
 
     #[test]
