@@ -605,3 +605,62 @@ fn a_sheet_passing_a_hand_for_good_stays_through_it_and_its_crossings_are_counte
     assert!(all.crossings > 0 && all.thin_parts_passed == 0, "{all:?}");
     assert_eq!(apart.thin_parts_passed, all.crossings);
 }
+
+/// A strip of cloth 1 mm wide and 6 cm long lying along the bottom of the groove between
+/// two cylinders of radius 4 cm side by side `gap` apart (an arm against the trunk), 2 mm
+/// above the line where they are nearest, where the walls are 0.1 mm farther apart than
+/// there, far closer than their two contact layers: its side at x = -1 mm starts inside
+/// the left one, its side at x = 0 between them. Returns the deepest any particle was
+/// inside either over 30 steps, m.
+fn strip_in_a_groove(gap: f64) -> f64 {
+    use cloth::collide::{Body, TriSurface};
+    use cloth::{Fabric, GridBuilder, SimulationBuilder, SolverSettings};
+    let radius = 0.04;
+    let lying = |x: f64| {
+        let along_y = nalgebra::UnitQuaternion::from_axis_angle(&Vec3::x_axis(), std::f64::consts::FRAC_PI_2);
+        let pose = nalgebra::Isometry3::from_parts(nalgebra::Translation3::new(x, 0.0, 0.0), along_y);
+        Body::new("cylinder", TriSurface::cylinder(radius, 0.1, 256).unwrap())
+            .with_pose(pose)
+            .unwrap()
+    };
+    let off = radius + 0.5 * gap;
+    let bodies = Arc::new(Bodies::new(vec![lying(-off), lying(off)]));
+    let mesh = GridBuilder::new(2, 13)
+        .size(0.001, 0.06)
+        .origin(Vec3::new(-0.001, -0.03, 0.002))
+        .build()
+        .unwrap();
+    let inside = mesh
+        .positions()
+        .iter()
+        .filter(|p| bodies.signed_distance(0.0, p).is_some_and(|(d, _)| d < 0.0))
+        .count();
+    assert_eq!(inside, 13, "one side of the strip starts in the left cylinder");
+    let mut sim = SimulationBuilder::new(mesh, Fabric::cotton_like())
+        .settings(SolverSettings {
+            gravity: Vec3::zeros(),
+            time_step: 0.01,
+            ..SolverSettings::default()
+        })
+        .collider(bodies.clone())
+        .build()
+        .unwrap();
+    let mut worst = Depth::default();
+    for _ in 0..30 {
+        let stats = sim.step().unwrap();
+        worst.check(&bodies, &sim, stats.step);
+    }
+    worst.0
+}
+
+#[test]
+fn cloth_put_out_of_one_wall_of_a_groove_narrower_than_two_contact_layers_is_not_put_into_the_other() {
+    for gap in [0.0005, 0.0] {
+        let depth = strip_in_a_groove(gap);
+        assert!(
+            depth <= 0.0,
+            "{:.3} mm inside a wall with the cylinders {gap} m apart",
+            depth * 1e3
+        );
+    }
+}

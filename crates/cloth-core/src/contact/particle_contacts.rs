@@ -2,7 +2,7 @@
 //! `r'|S = 0` as a velocity constraint in the filter, Coulomb friction, release when the
 //! body would have to pull, and the continuous end-of-step test that keeps particles out.
 
-use super::{Collider, Proximity};
+use super::{Collider, Proximity, SurfacePoint};
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter};
 use crate::{Mat3, Vec3};
 use rayon::prelude::*;
@@ -525,12 +525,24 @@ impl ParticleContacts {
                 if p.crossed || p.distance < 0.0 {
                     counts.corrected = 1;
                     counts.crossings = p.crossed as usize;
-                    *x1 = p.point + p.thickness * p.normal;
-                    let into = (*v1 - p.velocity).dot(&p.normal);
-                    if into < 0.0 {
-                        *v1 -= into * p.normal;
+                    let passing = s.passing;
+                    let query = |a: &Vec3, b: &Vec3| match passing {
+                        true => collider.sweep_past_thin_parts(t1, a, t1, b, f64::NEG_INFINITY, reach),
+                        false => collider.sweep(t1, a, t1, b, f64::NEG_INFINITY, reach),
+                    };
+                    let (out, other) = out_of_pinch(p, query);
+                    *x1 = out;
+                    for wall in std::iter::once(&*p).chain(other.as_ref()) {
+                        let into = (*v1 - wall.velocity).dot(&wall.normal);
+                        if into < 0.0 {
+                            *v1 -= into * wall.normal;
+                        }
                     }
-                    p.distance = p.thickness;
+                    // Exactly the thickness where nothing was in the way.
+                    p.distance = match other {
+                        Some(_) => (out - p.point).dot(&p.normal),
+                        None => p.thickness,
+                    };
                     p.crossed = false;
                 }
             }
@@ -590,6 +602,55 @@ impl ParticleContacts {
     }
 }
 
+/// Where a particle found inside a body or past its surface, at `wall`, is put back out:
+/// at the thickness along the wall's normal, unless the way there enters the body again,
+/// as it does in a pinch (an arm lying against the trunk leaves a crease between them
+/// narrower than their two contact layers: put out of one at its thickness, the particle
+/// lands inside the other, and so to and fro until it rests inside one). There it goes
+/// where it lies the thickness off both walls (their tangent planes), if that is near and
+/// clear of the body, else halfway between them. `query(a, b)` is the collider's sweep
+/// along the straight way from `a` to `b`. Returns where, and the other wall if any.
+fn out_of_pinch(
+    wall: &SurfacePoint,
+    query: impl Fn(&Vec3, &Vec3) -> Proximity,
+) -> (Vec3, Option<SurfacePoint>) {
+    let (a, n) = (wall.point, wall.normal);
+    let target = a + wall.thickness * n;
+    // Just off the wall: the way out does not meet the wall itself.
+    let start = a + PINCH_START * n;
+    let Proximity::Near(other) = query(&start, &target) else {
+        return (target, None);
+    };
+    if !other.crossed {
+        return (target, None);
+    }
+    let halfway = 0.5 * (start + other.point);
+    let (m, c) = (other.normal, n.dot(&other.normal));
+    // The thickness off both tangent planes, nearest the target (which is on the first's):
+    // `target + alpha n + beta m` with both planes met (`alpha + beta c = 0`,
+    // `beta (1 - c^2) = short`); off the second alone when that clears the first.
+    let short = other.thickness - (target - other.point).dot(&m);
+    let off_both = if c >= 0.0 {
+        target + short * m
+    } else if 1.0 - c * c > 1e-12 {
+        let beta = short / (1.0 - c * c);
+        target - beta * c * n + beta * m
+    } else {
+        return (halfway, Some(other));
+    };
+    let near = (off_both - target).norm() <= PINCH_REACH * (wall.thickness + other.thickness);
+    let clear =
+        near && !matches!(query(&start, &off_both), Proximity::Near(q) if q.crossed || q.distance < 0.0);
+    (if clear { off_both } else { halfway }, Some(other))
+}
+
+/// How far off a wall, m, the way out of a pinch starts (see [`out_of_pinch`]).
+const PINCH_START: f64 = 1e-7;
+
+/// How far from where one wall would put it a particle is moved out of a pinch, in the two
+/// walls' thicknesses: the walls' tangent planes stand for them only so far.
+const PINCH_REACH: f64 = 2.0;
+
 /// The Coulomb coefficient between particle `i` and a body whose own is `own` (else the
 /// particle's fabric's, `cloth_friction[i]`), times `scale`: none at a scale of zero, even
 /// where the coefficient is infinite (a contact that sticks).
@@ -598,5 +659,126 @@ fn coefficient(cloth_friction: &[f64], scale: f64, own: Option<f64>, i: usize) -
         0.0
     } else {
         scale * own.unwrap_or(cloth_friction[i])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A wall: a half-space of a body, `(x - point) . normal < 0` inside, with its contact
+    /// thickness.
+    struct Wall {
+        point: Vec3,
+        normal: Vec3,
+        thickness: f64,
+    }
+
+    fn wall(point: [f64; 3], normal: [f64; 3], thickness: f64) -> Wall {
+        Wall {
+            point: Vec3::from(point),
+            normal: Vec3::from(normal).normalize(),
+            thickness,
+        }
+    }
+
+    fn surface_point(w: &Wall, point: Vec3, distance: f64, crossed: bool) -> SurfacePoint {
+        SurfacePoint {
+            body: 0,
+            point,
+            normal: w.normal,
+            distance,
+            velocity: Vec3::zeros(),
+            thickness: w.thickness,
+            friction: None,
+            crossed,
+        }
+    }
+
+    /// The collider's sweep over a body made of `walls`: the first entry into one of them
+    /// along the way, else inside one at its end, else far.
+    fn sweep_of(walls: &[Wall]) -> impl Fn(&Vec3, &Vec3) -> Proximity + '_ {
+        move |a, b| {
+            let side = |w: &Wall, x: &Vec3| (x - w.point).dot(&w.normal);
+            let entry = walls
+                .iter()
+                .filter(|w| side(w, a) >= 0.0 && side(w, b) < 0.0)
+                .map(|w| (side(w, a) / (side(w, a) - side(w, b)), w))
+                .min_by(|p, q| p.0.total_cmp(&q.0));
+            if let Some((s, w)) = entry {
+                let point = a + s * (b - a);
+                return Proximity::Near(surface_point(w, point, side(w, b), true));
+            }
+            match walls.iter().find(|w| side(w, b) < 0.0) {
+                Some(w) => Proximity::Near(surface_point(w, b - side(w, b) * w.normal, side(w, b), false)),
+                None => Proximity::Far { gap_lower_bound: 0.0 },
+            }
+        }
+    }
+
+    /// Wall `walls[0]` found the particle crossed at the origin.
+    fn put_out(walls: &[Wall]) -> (Vec3, Option<SurfacePoint>) {
+        out_of_pinch(
+            &surface_point(&walls[0], Vec3::zeros(), -1e-3, true),
+            sweep_of(walls),
+        )
+    }
+
+    fn assert_near(a: Vec3, b: Vec3) {
+        assert!((a - b).norm() < 1e-9, "{a:?} against {b:?}");
+    }
+
+    #[test]
+    fn a_particle_is_put_out_at_the_thickness_where_the_way_is_clear() {
+        let floor = wall([0.0; 3], [0.0, 1.0, 0.0], 3e-3);
+        let (out, other) = put_out(&[floor]);
+        assert_near(out, Vec3::new(0.0, 3e-3, 0.0));
+        assert!(other.is_none());
+    }
+
+    #[test]
+    fn in_a_slot_narrower_than_its_two_layers_a_particle_is_put_halfway() {
+        // Two walls 2 mm apart, each with a layer of 3 mm: put out of the floor at 3 mm, it
+        // would be 1 mm inside the ceiling.
+        let walls = [
+            wall([0.0; 3], [0.0, 1.0, 0.0], 3e-3),
+            wall([0.0, 2e-3, 0.0], [0.0, -1.0, 0.0], 3e-3),
+        ];
+        let (out, other) = put_out(&walls);
+        assert_near(out, Vec3::new(0.0, 1e-3 + 0.5 * PINCH_START, 0.0));
+        assert_near(other.unwrap().point, Vec3::new(0.0, 2e-3, 0.0));
+    }
+
+    #[test]
+    fn in_a_wedge_a_particle_goes_where_it_is_a_thickness_off_both_walls() {
+        // The floor and a wall 2 mm above the origin that rises at 30 degrees from it
+        // along x: the two layers of 3 mm leave room 7.73 mm along x.
+        let (sin, cos) = 30f64.to_radians().sin_cos();
+        let walls = [
+            wall([0.0; 3], [0.0, 1.0, 0.0], 3e-3),
+            wall([0.0, 2e-3, 0.0], [sin, -cos, 0.0], 3e-3),
+        ];
+        let (out, other) = put_out(&walls);
+        let x = (3e-3 + 1e-3 * cos) / sin;
+        assert_near(out, Vec3::new(x, 3e-3, 0.0));
+        let other = other.unwrap();
+        assert!(((out - other.point).dot(&other.normal) - 3e-3).abs() < 1e-9);
+        // A body in the way there (a third wall at x = 5 mm): halfway instead.
+        let blocked = [
+            wall([0.0; 3], [0.0, 1.0, 0.0], 3e-3),
+            wall([0.0, 2e-3, 0.0], [sin, -cos, 0.0], 3e-3),
+            wall([5e-3, 0.0, 0.0], [-1.0, 0.0, 0.0], 3e-3),
+        ];
+        let (out, _) = put_out(&blocked);
+        assert!(out.x.abs() < 1e-12 && out.y > 0.0 && out.y < 2e-3, "{out:?}");
+        // A wedge too narrow for the tangent planes to stand for the walls that far (5
+        // degrees: 46 mm along x): halfway.
+        let (sin, cos) = 5f64.to_radians().sin_cos();
+        let narrow = [
+            wall([0.0; 3], [0.0, 1.0, 0.0], 3e-3),
+            wall([0.0, 2e-3, 0.0], [sin, -cos, 0.0], 3e-3),
+        ];
+        let (out, _) = put_out(&narrow);
+        assert!(out.x.abs() < 1e-12 && (out.y - 1e-3).abs() < 1e-6, "{out:?}");
     }
 }
