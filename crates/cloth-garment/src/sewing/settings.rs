@@ -116,7 +116,13 @@ pub struct DrapeSettings {
     /// sixtieth (the rest state differs by a fraction of a millimetre), in half the steps.
     pub time_step: f64,
     /// The step grows, while the steps go well, up to this, s (see
-    /// [`RestCriteria::max_time_step`]; at most the time step: it does not grow).
+    /// [`RestCriteria::max_time_step`]; at most the time step: it does not grow). Up to
+    /// 0.3 s rather than 0.1, the 42 quickest of GarmentCode's 60 shared designs on its
+    /// mean body took 2,450 drape steps rather than 4,120, with the same outcomes, their
+    /// rests as far apart (under 8.5 mm at each design's median, up to 7.5 cm on loose
+    /// flounces and hoods) as two runs differing only by rounding (up to 6.4 cm);
+    /// rand_1_038, a tiered skirt, rests in 210 steps rather than 380, within the 10
+    /// minutes it overran.
     pub max_time_step: f64,
     /// At rest when every particle has moved less than this speed, m/s, times the time ...
     /// GarmentCode's rand_1_037 at rest by 6 mm/s (over windows of 10 steps) stopped 50
@@ -144,7 +150,7 @@ impl Default for DrapeSettings {
     fn default() -> Self {
         Self {
             time_step: 1.0 / 30.0,
-            max_time_step: 0.1,
+            max_time_step: 0.3,
             rest_speed: 2e-3,
             consecutive_steps: 10,
             moving_fraction: 0.01,
