@@ -239,10 +239,7 @@ impl ParticleContacts {
     pub fn refresh(&mut self, collider: &dyn Collider, t: f64, x: &[Vec3], parallel: bool) {
         let reach = self.reach;
         let query = |(s, xi): (&mut ParticleState, &Vec3)| {
-            s.proximity = match s.passing {
-                true => collider.sweep_past_thin_parts(t, xi, t, xi, f64::INFINITY, reach),
-                false => collider.sweep(t, xi, t, xi, f64::INFINITY, reach),
-            };
+            s.proximity = sweep_for(collider, s.passing, (t, xi), (t, xi), f64::INFINITY, reach);
             s.mode = ContactMode::Free;
             s.released = false;
             s.demand_known = false;
@@ -516,19 +513,15 @@ impl ParticleContacts {
                 };
                 return SweepCounts::default();
             }
-            let mut proximity = match s.passing {
-                true => collider.sweep_past_thin_parts(t0, x0, t1, x1, start_bound, reach),
-                false => collider.sweep(t0, x0, t1, x1, start_bound, reach),
-            };
+            let mut proximity = sweep_for(collider, s.passing, (t0, x0), (t1, x1), start_bound, reach);
             let mut counts = SweepCounts::default();
             if let Proximity::Near(p) = &mut proximity {
                 if p.crossed || p.distance < 0.0 {
                     counts.corrected = 1;
                     counts.crossings = p.crossed as usize;
                     let passing = s.passing;
-                    let query = |a: &Vec3, b: &Vec3| match passing {
-                        true => collider.sweep_past_thin_parts(t1, a, t1, b, f64::NEG_INFINITY, reach),
-                        false => collider.sweep(t1, a, t1, b, f64::NEG_INFINITY, reach),
+                    let query = |a: &Vec3, b: &Vec3| {
+                        sweep_for(collider, passing, (t1, a), (t1, b), f64::NEG_INFINITY, reach)
                     };
                     let (out, other) = out_of_pinch(p, query);
                     *x1 = out;
@@ -599,6 +592,22 @@ impl ParticleContacts {
         } else {
             self.gap_lower_bound(i)
         }
+    }
+}
+
+/// The collider's sweep from `x0` at `t0` to `x1` at `t1` for a particle that is
+/// `passing` the bodies' thin parts or not.
+fn sweep_for(
+    collider: &dyn Collider,
+    passing: bool,
+    (t0, x0): (f64, &Vec3),
+    (t1, x1): (f64, &Vec3),
+    start_bound: f64,
+    reach: f64,
+) -> Proximity {
+    match passing {
+        true => collider.sweep_past_thin_parts(t0, x0, t1, x1, start_bound, reach),
+        false => collider.sweep(t0, x0, t1, x1, start_bound, reach),
     }
 }
 
