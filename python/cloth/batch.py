@@ -684,7 +684,8 @@ def run_batch(
 class DrapeResult:
     """What :func:`drape` did: the batch's records, and the summary's entries (one per
     pattern, as ``summary.json`` holds them: ``name``, ``pattern``, ``outcome``,
-    ``skipped``, ``failure``, ``seconds``, ``particles``, ``sewing_steps``,
+    ``skipped``, ``failure``, ``verdict`` (a finished garment's: ``"clean"``, or why not,
+    naming the panels), ``seconds``, ``particles``, ``sewing_steps``,
     ``draping_steps``, ``drape_ended``, ``self_intersections``, ``body_intersections``,
     ``thin_parts_passed`` (crossings of the body's thin parts by panels dressing the legs,
     which pass them), ``deepest_penetration`` (m), ``max_warp``, ``max_weft``,

@@ -1,6 +1,7 @@
 //! The batch's summary: one entry per pattern, read back from the report its run wrote,
 //! as JSON (`summary.json`) and as a table (`summary.md`).
 
+use crate::scene_file::{CLEAN, CLEAN_P99_STRAIN};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::fmt::Write as _;
@@ -22,6 +23,9 @@ pub struct SummaryEntry {
     pub skipped: bool,
     /// Why it failed or stopped.
     pub failure: Option<String>,
+    /// A finished garment's verdict: "clean", or why not, naming the panels (see
+    /// [`crate::scene_file::RunReport::verdict`]).
+    pub verdict: Option<String>,
     /// Wall time of its run, s.
     pub seconds: f64,
     pub particles: Option<usize>,
@@ -51,6 +55,7 @@ impl SummaryEntry {
             outcome: "failed".into(),
             skipped: false,
             failure: Some(reason),
+            verdict: None,
             seconds,
             particles: None,
             sewing_steps: None,
@@ -95,6 +100,7 @@ impl SummaryEntry {
             outcome,
             skipped,
             failure,
+            verdict: r["verdict"].as_str().map(str::to_string),
             seconds: r["total_seconds"].as_f64().unwrap_or(0.0),
             particles: count("particles"),
             sewing_steps: steps("sewing"),
@@ -127,11 +133,16 @@ pub fn write_summary(dir: &Path, entries: &[SummaryEntry]) -> std::io::Result<()
 
 fn markdown(entries: &[SummaryEntry]) -> String {
     let finished = entries.iter().filter(|e| e.finished()).count();
+    let clean = entries
+        .iter()
+        .filter(|e| e.verdict.as_deref() == Some(CLEAN))
+        .count();
     let mut out = format!(
-        "# Drape summary\n\n{finished} of {} patterns finished.\n\n",
+        "# Drape summary\n\n{finished} of {} patterns finished, {clean} of them clean (at rest, nothing \
+         through itself or the body, p99 warp and weft strain under {CLEAN_P99_STRAIN} %).\n\n",
         entries.len()
     );
-    out += "| pattern | outcome | seconds | particles | sewing steps | draping steps | self / body intersections | deepest penetration, mm | max warp / weft, % | p99 warp / weft, % | failure |\n";
+    out += "| pattern | outcome | seconds | particles | sewing steps | draping steps | self / body intersections | deepest penetration, mm | max warp / weft, % | p99 warp / weft, % | verdict, or why it failed |\n";
     out += "|---|---|---|---|---|---|---|---|---|---|---|\n";
     let num = |v: Option<f64>, digits: usize| v.map_or("-".to_string(), |x| format!("{x:.digits$}"));
     let int = |v: Option<u64>| v.map_or("-".to_string(), |x| x.to_string());
@@ -164,6 +175,7 @@ fn markdown(entries: &[SummaryEntry]) -> String {
             num(e.p99_weft, 2),
             e.failure
                 .as_deref()
+                .or(e.verdict.as_deref())
                 .unwrap_or("")
                 .replace('|', "/")
                 .replace('\n', " "),

@@ -102,6 +102,10 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             "| particles of attached edges (a waist, a neckline), each held on one side of where it was placed | {n} |"
         )?;
     }
+    if let Some(verdict) = &report.verdict {
+        writeln!(out, "\n**Verdict**: {verdict}.")?;
+    }
+    write_panels(out, report)?;
     if !report.seam_stalls.is_empty() {
         writeln!(
             out,
@@ -198,6 +202,36 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
     }
     for w in &report.warnings {
         writeln!(out, "\nWarning: {w}")?;
+    }
+    Ok(())
+}
+
+/// The table of strain and intersections by panel, most stretched first.
+fn write_panels(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()> {
+    if report.panels.is_empty() {
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "\nBy panel, the most stretched first:\n\n\
+         | panel | triangles | p99 warp / weft, % | max warp / weft, % | through the cloth | through the body |\n\
+         |---|---|---|---|---|---|"
+    )?;
+    let mut panels: Vec<_> = report.panels.iter().collect();
+    panels.sort_by(|a, b| b.p99().0.total_cmp(&a.p99().0));
+    for p in panels {
+        writeln!(
+            out,
+            "| {} | {} | {:.2} / {:.2} | {:.2} / {:.2} | {} | {} |",
+            p.panel,
+            p.triangles,
+            p.p99_warp,
+            p.p99_weft,
+            p.max_warp,
+            p.max_weft,
+            p.self_intersections,
+            p.body_intersections
+        )?;
     }
     Ok(())
 }

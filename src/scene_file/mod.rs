@@ -8,10 +8,12 @@ mod error;
 mod folder;
 mod frame;
 mod observer;
+mod panel_report;
 mod recorder;
 mod records;
 mod report;
 mod run;
+mod verdict;
 mod warning;
 
 pub use build::{Prepared, PreparedCloth, SheetTest};
@@ -20,12 +22,14 @@ pub use error::SceneFileError;
 pub use folder::{claim_output_folder, FolderRun, RunFolderError};
 pub use frame::{placement, UpAxis};
 pub use observer::RunObserver;
+pub use panel_report::PanelReport;
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
 pub use report::{
     Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, StrainSummary,
     TangleRecord,
 };
 pub use run::RunResult;
+pub use verdict::{CLEAN, CLEAN_P99_STRAIN};
 pub use warning::SceneWarning;
 
 use std::path::{Path, PathBuf};

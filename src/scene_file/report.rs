@@ -1,5 +1,6 @@
 //! What a run reports (report.json; report.md says the same in tables).
 
+use super::panel_report::PanelReport;
 use crate::garment::sewing::{DrapeSettings, SewingSettings};
 use cloth_core::{ClothMesh, RestCriteria, SelfCollision, SolverSettings, StrainReport, Vec3};
 use serde::Serialize;
@@ -79,7 +80,10 @@ pub struct StrainSummary {
 
 impl StrainSummary {
     pub fn of(mesh: &ClothMesh, positions: &[Vec3]) -> Self {
-        let s = StrainReport::new(mesh, positions);
+        Self::from_report(&StrainReport::new(mesh, positions))
+    }
+
+    pub fn from_report(s: &StrainReport) -> Self {
         Self {
             max_warp: s.max_warp,
             max_weft: s.max_weft,
@@ -135,6 +139,12 @@ pub struct RunReport {
     /// Pieces of the cloth (panels) found through each other at the start of a stage,
     /// exempt from each other until they came apart.
     pub tangles: Vec<TangleRecord>,
+    /// The strain and the intersections above, panel by panel (garments only).
+    pub panels: Vec<PanelReport>,
+    /// A finished garment's verdict: "clean" (at rest, nothing through itself or the
+    /// body, p99 warp and weft strain under 5 %) or why not, naming the panels (see
+    /// `verdict`); `None` for a run that did not finish, and for sheets.
+    pub verdict: Option<String>,
     pub checkpoints: Vec<Checkpoint>,
     /// What a fabric test reads from the cloth at rest (a finished run of a test scene).
     pub measurement: Option<Measurement>,

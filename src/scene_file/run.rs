@@ -4,13 +4,18 @@
 
 use super::build::{Prepared, PreparedCloth, SheetTest};
 use super::observer::RunObserver;
+use super::panel_report::panel_reports;
 use super::recorder::{Recorded, Recorder};
 use super::records::SceneFile;
 use super::report::{Measurement, RunOutcome, RunReport, RunSettings, StrainSummary, TangleRecord};
+use super::verdict::verdict;
 use super::SceneFileError;
 use crate::garment::sewing::{drape, sew};
 use crate::garment::GarmentError;
-use cloth_core::{count_body_intersections, count_self_intersections, ClothMesh, StopReason, Vec3};
+use cloth_core::{
+    body_intersections_by_edge, self_intersecting_pairs, BodyIntersections, ClothMesh, StopReason,
+    StrainReport, Vec3,
+};
 use std::path::Path;
 use std::time::Instant;
 
@@ -54,9 +59,12 @@ impl Prepared {
         // Names the piece of the cloth a triangle is of (a garment's panels keep their
         // triangles' order through welding).
         let mut piece_of: Box<dyn Fn(usize) -> String> = Box::new(|t| format!("the piece of triangle {t}"));
+        // A garment's panel of each triangle, and the panels' names, for the report by panel.
+        let mut panels_of = None;
         let (settings, rec) = match self.cloth {
             PreparedCloth::Garment { garment, fabrics } => {
                 let (panels, names) = (garment.triangle_panel.clone(), garment.panel_names.clone());
+                panels_of = Some((panels.clone(), names.clone()));
                 attached_particles = Some(garment.attached.iter().map(|(p, _)| p.len()).sum());
                 piece_of = Box::new(move |t| format!("panel '{}'", names[panels[t]]));
                 let mut rec = Recorder::new(
@@ -169,9 +177,27 @@ impl Prepared {
             })
             .collect();
         let (deepest, _) = self.bodies.deepest_inside(time, &positions);
-        let self_intersections = count_self_intersections(&mesh, &seams, exemption_radius, &positions).count;
-        let body =
-            count_body_intersections(self.bodies.as_ref(), time, &mesh, &positions, &passes_thin_parts);
+        let self_pairs = self_intersecting_pairs(&mesh, &seams, exemption_radius, &positions);
+        let body_edges =
+            body_intersections_by_edge(self.bodies.as_ref(), time, &mesh, &positions, &passes_thin_parts);
+        let body: BodyIntersections = body_edges.iter().map(|(_, found)| *found).sum();
+        let strain = StrainReport::new(&mesh, &positions);
+        let strain_summary = StrainSummary::from_report(&strain);
+        let (panels, verdict) = match panels_of {
+            Some((triangle_panel, names)) => {
+                let panels = panel_reports(&names, &triangle_panel, &mesh, &strain, &self_pairs, &body_edges);
+                let verdict = verdict(
+                    &outcome,
+                    &stages,
+                    self_pairs.len(),
+                    body.crossings,
+                    &strain_summary,
+                    &panels,
+                );
+                (panels, verdict)
+            }
+            None => (Vec::new(), None),
+        };
         let measurement = match (&outcome, sheet_test) {
             (RunOutcome::Finished, Some(test)) => Some(measure(test, &mesh, &positions)),
             _ => None,
@@ -185,9 +211,9 @@ impl Prepared {
             stages,
             total_seconds: start.elapsed().as_secs_f64(),
             simulated_time: time,
-            strain: StrainSummary::of(&mesh, &positions),
+            strain: strain_summary,
             deepest_penetration: deepest,
-            self_intersections,
+            self_intersections: self_pairs.len(),
             body_intersections: body.crossings,
             thin_parts_passed: body.thin_parts_passed,
             largest_seam_gap: gap,
@@ -197,6 +223,8 @@ impl Prepared {
             untangling_at_rest,
             attached_particles,
             tangles,
+            panels,
+            verdict,
             checkpoints,
             measurement,
             frames,

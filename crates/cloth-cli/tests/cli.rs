@@ -576,8 +576,36 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
     ] {
         assert!(band_entry[key].is_number(), "{key}: {band_entry}");
     }
+    // The verdict agrees with the figures: "clean" exactly when they say so.
+    let under = |key: &str| band_entry[key].as_f64().unwrap() < 5.0;
+    let clean = band_entry["self_intersections"] == 0
+        && band_entry["body_intersections"] == 0
+        && under("p99_warp")
+        && under("p99_weft")
+        && band_entry["drape_ended"] == "at_rest";
+    assert_eq!(
+        band_entry["verdict"].as_str() == Some("clean"),
+        clean,
+        "{band_entry}"
+    );
+    // Its report gives the figures panel by panel: every triangle in one of its panels.
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("rand_1_001/report.json")).unwrap()).unwrap();
+    let panels = report["panels"].as_array().unwrap();
+    assert!(panels.len() >= 2, "{panels:?}");
+    let triangles: u64 = panels.iter().map(|p| p["triangles"].as_u64().unwrap()).sum();
+    assert_eq!(triangles, report["triangles"].as_u64().unwrap());
+    let worst = panels
+        .iter()
+        .map(|p| p["p99_weft"].as_f64().unwrap())
+        .fold(f64::MIN, f64::max);
+    assert!(
+        worst >= band_entry["p99_weft"].as_f64().unwrap() - 1e-9,
+        "{panels:?}"
+    );
     let broken_entry = &entries[1];
     assert_eq!(broken_entry["outcome"], "failed");
+    assert!(broken_entry["verdict"].is_null(), "{broken_entry}");
     assert!(
         broken_entry["failure"].as_str().unwrap().contains("broken.json"),
         "{broken_entry}"

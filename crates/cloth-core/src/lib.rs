@@ -22,8 +22,8 @@ pub mod solver;
 mod spatial;
 
 pub use contact::{
-    count_body_intersections, BodyIntersections, Collider, ContactMode, PassThrough, Proximity, SharpFeature,
-    SurfacePoint,
+    body_intersections_by_edge, count_body_intersections, BodyIntersections, Collider, ContactMode,
+    PassThrough, Proximity, SharpFeature, SurfacePoint,
 };
 pub use energy::attachment::Attachment;
 pub use error::{DivergenceReason, MeshError, ParamError, SimError};

@@ -28,6 +28,17 @@ impl StrainReport {
             warp.push(100.0 * (wu.norm() - 1.0));
             weft.push(100.0 * (wv.norm() - 1.0));
         }
+        Self::from_strains(warp, weft)
+    }
+
+    /// The report of some of the triangles (a garment's panel), by their indices here.
+    pub fn of_triangles(&self, triangles: &[usize]) -> Self {
+        let warp: Vec<f64> = triangles.iter().map(|&t| self.warp[t]).collect();
+        let weft: Vec<f64> = triangles.iter().map(|&t| self.weft[t]).collect();
+        Self::from_strains(warp, weft)
+    }
+
+    fn from_strains(warp: Vec<f64>, weft: Vec<f64>) -> Self {
         Self {
             max_warp: max(&warp),
             max_weft: max(&weft),
@@ -74,8 +85,11 @@ fn max(values: &[f64]) -> f64 {
     values.iter().copied().fold(f64::NEG_INFINITY, f64::max)
 }
 
-/// Nearest-rank percentile.
+/// Nearest-rank percentile (of none, as [`max`] of none).
 fn percentile(values: &[f64], q: f64) -> f64 {
+    if values.is_empty() {
+        return f64::NEG_INFINITY;
+    }
     let mut v = values.to_vec();
     v.sort_by(f64::total_cmp);
     let rank = ((q * v.len() as f64).ceil() as usize).clamp(1, v.len());

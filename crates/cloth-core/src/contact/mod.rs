@@ -24,6 +24,15 @@ pub struct BodyIntersections {
     pub thin_parts_passed: usize,
 }
 
+impl std::iter::Sum for BodyIntersections {
+    fn sum<I: Iterator<Item = Self>>(iter: I) -> Self {
+        iter.fold(Self::default(), |p, q| Self {
+            crossings: p.crossings + q.crossings,
+            thin_parts_passed: p.thin_parts_passed + q.thin_parts_passed,
+        })
+    }
+}
+
 /// The edges of `mesh` at positions `x` passing through the triangles of `collider`'s
 /// bodies at time `t`; `passes_thin_parts` (empty, or one flag per particle) marks the
 /// particles passing the bodies' thin parts for good, whose edges (with either end
@@ -35,13 +44,29 @@ pub fn count_body_intersections(
     x: &[Vec3],
     passes_thin_parts: &[bool],
 ) -> BodyIntersections {
+    body_intersections_by_edge(collider, t, mesh, x, passes_thin_parts)
+        .into_iter()
+        .map(|(_, found)| found)
+        .sum()
+}
+
+/// As [`count_body_intersections`], edge by edge: each edge of `mesh` (its index in
+/// [`ClothMesh::edges`]) with any crossing, and its crossings, in the edges' order.
+pub fn body_intersections_by_edge(
+    collider: &dyn Collider,
+    t: f64,
+    mesh: &ClothMesh,
+    x: &[Vec3],
+    passes_thin_parts: &[bool],
+) -> Vec<(usize, BodyIntersections)> {
     use rayon::prelude::*;
     let passes = |i: usize| passes_thin_parts.get(i).copied().unwrap_or(false);
     mesh.edges()
         .par_iter()
-        .map(|&[a, b]| {
+        .enumerate()
+        .filter_map(|(e, &[a, b])| {
             let all = collider.segment_crossings(t, &x[a], &x[b]);
-            if all > 0 && (passes(a) || passes(b)) {
+            let found = if all > 0 && (passes(a) || passes(b)) {
                 let thick = collider.thick_segment_crossings(t, &x[a], &x[b]);
                 BodyIntersections {
                     crossings: thick,
@@ -52,12 +77,10 @@ pub fn count_body_intersections(
                     crossings: all,
                     thin_parts_passed: 0,
                 }
-            }
+            };
+            (all > 0).then_some((e, found))
         })
-        .reduce(BodyIntersections::default, |p, q| BodyIntersections {
-            crossings: p.crossings + q.crossings,
-            thin_parts_passed: p.thin_parts_passed + q.thin_parts_passed,
-        })
+        .collect()
 }
 
 /// Everything the solver keeps for contacts: the bodies, the per-particle state and the
