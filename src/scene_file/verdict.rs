@@ -42,7 +42,7 @@ pub fn verdict(
             .map(|p| (p.panel.as_str(), count(p)))
             .filter(|&(_, n)| n > 0)
             .collect();
-        by.sort_by(|a, b| b.1.cmp(&a.1));
+        by.sort_by_key(|&(_, n)| std::cmp::Reverse(n));
         let most: Vec<String> = by.iter().take(NAMED).map(|(p, n)| format!("'{p}' {n}")).collect();
         if most.is_empty() {
             String::new()
