@@ -218,17 +218,17 @@ fn write_panels(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()> 
          |---|---|---|---|---|---|"
     )?;
     let mut panels: Vec<_> = report.panels.iter().collect();
-    panels.sort_by(|a, b| b.p99().0.total_cmp(&a.p99().0));
+    panels.sort_by(|a, b| b.strain.p99().0.total_cmp(&a.strain.p99().0));
     for p in panels {
         writeln!(
             out,
             "| {} | {} | {:.2} / {:.2} | {:.2} / {:.2} | {} | {} |",
             p.panel,
             p.triangles,
-            p.p99_warp,
-            p.p99_weft,
-            p.max_warp,
-            p.max_weft,
+            p.strain.p99_warp,
+            p.strain.p99_weft,
+            p.strain.max_warp,
+            p.strain.max_weft,
             p.self_intersections,
             p.body_intersections
         )?;

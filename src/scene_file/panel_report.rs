@@ -3,6 +3,7 @@
 //! the panels to look at: the skirt cut smaller than the hips, not the bodice above it;
 //! the collar through the shoulder it was caught under.
 
+use super::report::StrainSummary;
 use cloth_core::{BodyIntersections, ClothMesh, StrainReport};
 use serde::Serialize;
 use std::collections::HashMap;
@@ -12,28 +13,15 @@ use std::collections::HashMap;
 pub struct PanelReport {
     pub panel: String,
     pub triangles: usize,
-    /// Warp and weft strain over the panel's triangles, %.
-    pub max_warp: f64,
-    pub max_weft: f64,
-    pub p99_warp: f64,
-    pub p99_weft: f64,
+    /// Warp and weft strain over the panel's triangles, % (in the JSON, beside the rest).
+    #[serde(flatten)]
+    pub strain: StrainSummary,
     /// The cloth's edge-triangle pairs through each other with the edge or the triangle
     /// in this panel (a pair between two panels counts for both).
     pub self_intersections: usize,
     /// Crossings of the bodies by edges of this panel (an edge on a seam counts for both
     /// panels it joins).
     pub body_intersections: usize,
-}
-
-impl PanelReport {
-    /// The larger of the p99 warp and weft strain, and which it is.
-    pub fn p99(&self) -> (f64, &'static str) {
-        if self.p99_weft >= self.p99_warp {
-            (self.p99_weft, "weft")
-        } else {
-            (self.p99_warp, "warp")
-        }
-    }
 }
 
 /// The report of every panel (`names`, each triangle's in `triangle_panel`) of `mesh` with
@@ -72,18 +60,12 @@ pub fn panel_reports(
         .iter()
         .enumerate()
         .filter(|(p, _)| !triangles_of[*p].is_empty())
-        .map(|(p, name)| {
-            let s = strain.of_triangles(&triangles_of[p]);
-            PanelReport {
-                panel: name.clone(),
-                triangles: triangles_of[p].len(),
-                max_warp: s.max_warp,
-                max_weft: s.max_weft,
-                p99_warp: s.p99_warp,
-                p99_weft: s.p99_weft,
-                self_intersections: self_count[p],
-                body_intersections: body_count[p],
-            }
+        .map(|(p, name)| PanelReport {
+            panel: name.clone(),
+            triangles: triangles_of[p].len(),
+            strain: StrainSummary::from_report(&strain.of_triangles(&triangles_of[p])),
+            self_intersections: self_count[p],
+            body_intersections: body_count[p],
         })
         .collect()
 }
@@ -153,14 +135,14 @@ mod tests {
         assert_eq!((left.panel.as_str(), right.panel.as_str()), ("left", "right"));
         assert_eq!(left.triangles + right.triangles, mesh.triangles().len());
         assert!(
-            left.p99_warp.abs() < 1e-9 && left.p99_weft.abs() < 1e-9,
+            left.strain.p99_warp.abs() < 1e-9 && left.strain.p99_weft.abs() < 1e-9,
             "{left:?}"
         );
         assert!(
-            (right.p99_warp - 10.0).abs() < 1e-9 && right.p99_weft.abs() < 1e-9,
+            (right.strain.p99_warp - 10.0).abs() < 1e-9 && right.strain.p99_weft.abs() < 1e-9,
             "{right:?}"
         );
-        assert_eq!(right.p99(), (right.p99_warp, "warp"));
+        assert_eq!(right.strain.p99(), (right.strain.p99_warp, "warp"));
         assert_eq!((left.self_intersections, left.body_intersections), (0, 0));
     }
 

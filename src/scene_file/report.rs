@@ -70,7 +70,7 @@ pub struct Checkpoint {
 }
 
 /// The strain of a cloth state, %.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct StrainSummary {
     pub max_warp: f64,
     pub max_weft: f64,
@@ -81,6 +81,15 @@ pub struct StrainSummary {
 impl StrainSummary {
     pub fn of(mesh: &ClothMesh, positions: &[Vec3]) -> Self {
         Self::from_report(&StrainReport::new(mesh, positions))
+    }
+
+    /// The larger of the p99 warp and weft strain, and which thread it is.
+    pub fn p99(&self) -> (f64, &'static str) {
+        if self.p99_weft >= self.p99_warp {
+            (self.p99_weft, "weft")
+        } else {
+            (self.p99_warp, "warp")
+        }
     }
 
     pub fn from_report(s: &StrainReport) -> Self {

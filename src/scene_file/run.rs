@@ -56,17 +56,13 @@ impl Prepared {
         let mut untangling_at_rest = None;
         let mut attached_particles = None;
         let mut sheet_test = None;
-        // Names the piece of the cloth a triangle is of (a garment's panels keep their
+        // A garment's panel of each triangle, and the panels' names (its panels keep their
         // triangles' order through welding).
-        let mut piece_of: Box<dyn Fn(usize) -> String> = Box::new(|t| format!("the piece of triangle {t}"));
-        // A garment's panel of each triangle, and the panels' names, for the report by panel.
-        let mut panels_of = None;
+        let mut panels_of: Option<(Vec<usize>, Vec<String>)> = None;
         let (settings, rec) = match self.cloth {
             PreparedCloth::Garment { garment, fabrics } => {
-                let (panels, names) = (garment.triangle_panel.clone(), garment.panel_names.clone());
-                panels_of = Some((panels.clone(), names.clone()));
+                panels_of = Some((garment.triangle_panel.clone(), garment.panel_names.clone()));
                 attached_particles = Some(garment.attached.iter().map(|(p, _)| p.len()).sum());
-                piece_of = Box::new(move |t| format!("panel '{}'", names[panels[t]]));
                 let mut rec = Recorder::new(
                     observer,
                     &scene.output,
@@ -167,6 +163,11 @@ impl Prepared {
             tangles,
             passes_thin_parts,
         } = rec.finish();
+        // Names the piece of the cloth a triangle is of.
+        let piece_of = |t: usize| match &panels_of {
+            Some((panels, names)) => format!("panel '{}'", names[panels[t]]),
+            None => format!("the piece of triangle {t}"),
+        };
         let tangles = tangles
             .into_iter()
             .map(|(stage, t)| TangleRecord {
@@ -183,9 +184,9 @@ impl Prepared {
         let body: BodyIntersections = body_edges.iter().map(|(_, found)| *found).sum();
         let strain = StrainReport::new(&mesh, &positions);
         let strain_summary = StrainSummary::from_report(&strain);
-        let (panels, verdict) = match panels_of {
+        let (panels, verdict) = match &panels_of {
             Some((triangle_panel, names)) => {
-                let panels = panel_reports(&names, &triangle_panel, &mesh, &strain, &self_pairs, &body_edges);
+                let panels = panel_reports(names, triangle_panel, &mesh, &strain, &self_pairs, &body_edges);
                 let verdict = verdict(
                     &outcome,
                     &stages,

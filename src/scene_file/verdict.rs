@@ -62,18 +62,17 @@ pub fn verdict(
             named(&|p| p.body_intersections)
         ));
     }
-    let (p99, thread) = if strain.p99_weft >= strain.p99_warp {
-        (strain.p99_weft, "weft")
-    } else {
-        (strain.p99_warp, "warp")
-    };
+    let (p99, thread) = strain.p99();
     if p99 >= CLEAN_P99_STRAIN {
-        let mut tight: Vec<&PanelReport> = panels.iter().filter(|p| p.p99().0 >= CLEAN_P99_STRAIN).collect();
-        tight.sort_by(|a, b| b.p99().0.total_cmp(&a.p99().0));
+        let mut tight: Vec<&PanelReport> = panels
+            .iter()
+            .filter(|p| p.strain.p99().0 >= CLEAN_P99_STRAIN)
+            .collect();
+        tight.sort_by(|a, b| b.strain.p99().0.total_cmp(&a.strain.p99().0));
         let most: Vec<String> = tight
             .iter()
             .take(NAMED)
-            .map(|p| format!("'{}' {:.1} % {}", p.panel, p.p99().0, p.p99().1))
+            .map(|p| format!("'{}' {:.1} % {}", p.panel, p.strain.p99().0, p.strain.p99().1))
             .collect();
         let whole = format!("stretched: p99 {thread} strain {p99:.1} %, over {CLEAN_P99_STRAIN} %");
         reasons.push(if most.is_empty() {
@@ -118,10 +117,7 @@ mod tests {
         PanelReport {
             panel: name.into(),
             triangles: 100,
-            max_warp: 1.0,
-            max_weft: p99_weft + 1.0,
-            p99_warp: 0.5,
-            p99_weft,
+            strain: strain(0.5, p99_weft),
             self_intersections: through,
             body_intersections: 0,
         }

@@ -44,9 +44,10 @@ pub fn count_body_intersections(
     x: &[Vec3],
     passes_thin_parts: &[bool],
 ) -> BodyIntersections {
-    body_intersections_by_edge(collider, t, mesh, x, passes_thin_parts)
-        .into_iter()
-        .map(|(_, found)| found)
+    use rayon::prelude::*;
+    mesh.edges()
+        .par_iter()
+        .map(|&edge| edge_crossings(collider, t, x, passes_thin_parts, edge))
         .sum()
 }
 
@@ -60,27 +61,36 @@ pub fn body_intersections_by_edge(
     passes_thin_parts: &[bool],
 ) -> Vec<(usize, BodyIntersections)> {
     use rayon::prelude::*;
-    let passes = |i: usize| passes_thin_parts.get(i).copied().unwrap_or(false);
     mesh.edges()
         .par_iter()
         .enumerate()
-        .filter_map(|(e, &[a, b])| {
-            let all = collider.segment_crossings(t, &x[a], &x[b]);
-            let found = if all > 0 && (passes(a) || passes(b)) {
-                let thick = collider.thick_segment_crossings(t, &x[a], &x[b]);
-                BodyIntersections {
-                    crossings: thick,
-                    thin_parts_passed: all.saturating_sub(thick),
-                }
-            } else {
-                BodyIntersections {
-                    crossings: all,
-                    thin_parts_passed: 0,
-                }
-            };
-            (all > 0).then_some((e, found))
-        })
+        .map(|(e, &edge)| (e, edge_crossings(collider, t, x, passes_thin_parts, edge)))
+        .filter(|(_, found)| found.crossings + found.thin_parts_passed > 0)
         .collect()
+}
+
+/// The crossings of the bodies by one edge (see [`count_body_intersections`]).
+fn edge_crossings(
+    collider: &dyn Collider,
+    t: f64,
+    x: &[Vec3],
+    passes_thin_parts: &[bool],
+    [a, b]: [usize; 2],
+) -> BodyIntersections {
+    let passes = |i: usize| passes_thin_parts.get(i).copied().unwrap_or(false);
+    let all = collider.segment_crossings(t, &x[a], &x[b]);
+    if all > 0 && (passes(a) || passes(b)) {
+        let thick = collider.thick_segment_crossings(t, &x[a], &x[b]);
+        BodyIntersections {
+            crossings: thick,
+            thin_parts_passed: all.saturating_sub(thick),
+        }
+    } else {
+        BodyIntersections {
+            crossings: all,
+            thin_parts_passed: 0,
+        }
+    }
 }
 
 /// Everything the solver keeps for contacts: the bodies, the per-particle state and the
