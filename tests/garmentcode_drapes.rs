@@ -6,7 +6,7 @@
 
 mod common;
 
-use cloth::garment::sewing::{sew, StallThen};
+use cloth::garment::sewing::{sew, StallThen, ZIP_RING};
 use cloth::scene_file::{PreparedCloth, RunObserver, RunOutcome};
 use cloth::{Interrupt, Simulation, StepStats, Vec3};
 use std::ops::ControlFlow;
@@ -299,4 +299,58 @@ fn a_top_whose_cuffs_are_drawn_off_the_arms_starts_over_with_its_seams_drawn_shu
         let points: Vec<Vec3> = cuff.iter().map(|&i| x[i]).collect();
         assert_eq!(prepared.bodies.deepest_inside(0.0, &points).0, 0.0, "{side} cuff");
     }
+}
+
+#[test]
+fn a_waistband_cut_to_a_narrower_waist_is_zipped_round_a_wider_one_and_rests_stretched() {
+    // rand_1_001, a waistband alone, 84.3 cm round (its body's waist), on the mean body
+    // widened to `mean_male`'s waist (89.0 cm): the pull closes it to a few mm, tears the
+    // cloth at 16 times and falls back to 4, where the band stops wider apart than a zip
+    // reaches (a spacing). Nothing lies between the sides, and the way round the body
+    // through the band asks under `ZIP_RING` of it: zipped, it rests stretched round the
+    // waist as the widening asks, through nothing.
+    let assets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/garmentcode");
+    let widen = 89.003 / 84.3338;
+    let obj = std::fs::read_to_string(assets.join("bodies/mean_all.obj")).unwrap();
+    let wide: String = obj
+        .lines()
+        .map(|line| match line.strip_prefix("v ") {
+            Some(rest) => {
+                let c: Vec<f64> = rest.split_whitespace().map(|t| t.parse().unwrap()).collect();
+                format!("v {} {} {}\n", widen * c[0], c[1], widen * c[2])
+            }
+            None => format!("{line}\n"),
+        })
+        .collect();
+    let dir = std::env::temp_dir().join(format!("cloth-wide-waist-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("wide.obj"), wide).unwrap();
+    let pattern = assets.join("patterns/rand_1_001.json");
+    let text = format!(
+        "name = \"rand_1_001\"\n[[bodies]]\nfile = \"wide.obj\"\nup_axis = \"y\"\nmin_thickness = 0.001\n\
+         [cloth.garment]\nedge_length = 0.015\npattern = {:?}\n[fabric]\npreset = \"cotton_poplin\"\n",
+        pattern.display().to_string()
+    );
+    let scene = cloth::scene_file::SceneFile::from_toml_str(&text, "scene.toml").unwrap();
+    let prepared = scene.prepare("scene.toml", &dir).unwrap();
+    let result = prepared.run(&scene, None, &mut Quiet).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    let r = &result.report;
+    let last = r.seam_stalls.last().expect("stalled");
+    assert_eq!(last.then, StallThen::Zipped, "{:?}", r.seam_stalls);
+    // Wider than a zip reaches without the ring (a spacing, under the 1.5 cm edge).
+    assert!(last.gap > 0.015, "{last:?}");
+    assert_eq!(r.outcome, RunOutcome::Finished);
+    assert_eq!(r.stages[1].ended, "at_rest");
+    assert_eq!((r.self_intersections, r.body_intersections), (0, 0));
+    // Round the waist 5.5 % wider than the band, and a few mm out from it: stretched by
+    // about that, not by the 15 % a zip may ask, along the weft (round the band).
+    let s = &r.strain;
+    assert!(s.p99_weft > 5.0 && s.p99_weft < 100.0 * ZIP_RING, "{s:?}");
+    assert!(s.p99_warp < 1.0, "{s:?}");
+    let verdict = r.verdict.as_deref().unwrap();
+    assert!(
+        verdict.starts_with("stretched") && verdict.contains("'wb_"),
+        "{verdict}"
+    );
 }

@@ -1,5 +1,6 @@
 //! What can go wrong making, sewing and draping a garment.
 
+use super::ring::Ring;
 use crate::meshing::MeshingError;
 use crate::pattern::PatternError;
 use cloth_core::{MeshError, ParamError, SimError};
@@ -56,12 +57,14 @@ pub enum GarmentError {
         tolerance_mm: f64,
     },
     /// The seams stopped closing with the pull at its strongest, too far apart to weld
-    /// where they stand, and too far to zip shut or with a body or cloth between the
-    /// sides of their open pairs.
+    /// where they stand, and too far to zip shut (beyond a zip's reach, their ring asking
+    /// more than the sewing's `ZIP_RING`) or with a body or cloth between the sides of
+    /// their open pairs.
     #[error(
         "the seams stopped closing at step {steps}: {seam} is still {gap_mm:.1} mm apart with the \
          pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm); \
-         {held_by}{}",
+         {held_by}{}{}",
+        ring_said(ring),
         others_held_by.of_other_seams()
     )]
     Stalled {
@@ -75,6 +78,10 @@ pub enum GarmentError {
         held_by: HeldOpen,
         /// What lies between the sides of the other seams' pairs too far apart to weld.
         others_held_by: HeldOpen,
+        /// The ring round the body through the seam's widest pair (see [`Ring`]): what
+        /// closing asks of the cloth round it.
+        /// Boxed: the error stays small on the paths that never fail.
+        ring: Option<Box<Ring>>,
     },
     /// The observer asked to stop (a user's interrupt, say).
     #[error("{stage} stopped at step {steps}")]
@@ -94,12 +101,33 @@ pub enum HeldOpen {
     /// Cloth of these panels (named, each once): a layer the seam closed on; such seams
     /// are welded over it when near enough.
     Cloth(Vec<String>),
-    /// A body: the cloth between the sides is too short to go round it.
+    /// A body: the cloth between the sides is too short to go round it, or went round it
+    /// on the wrong side (GarmentCode's rand_1_035 lays a trouser leg's flounce across the
+    /// other shin); the failure's ring says which.
     Body,
     /// Nothing: the cloth round them holds the sides apart (too small for the body it goes
     /// round, or held by its own contact elsewhere, as godets touching at their corners);
     /// such seams are zipped shut when near enough.
     Nothing,
+}
+
+/// What closing asks of the ring round a seam, as the middle of a sentence about it:
+/// empty for no ring.
+fn ring_said(ring: &Option<Box<Ring>>) -> String {
+    let Some(ring) = ring else {
+        return String::new();
+    };
+    let strain = 100.0 * ring.closing_strain();
+    let round = format!(
+        "; the way round the body from side to side, through panel {}, is {:.1} cm of cloth",
+        quoted(&ring.panels),
+        100.0 * ring.rest
+    );
+    if strain > 0.0 {
+        format!("{round}, which closing stretches {strain:.0} %")
+    } else {
+        format!("{round}, with {:.0} % to spare when closed", -strain)
+    }
 }
 
 /// Panel names, each in quotes, separated by commas.
@@ -131,7 +159,8 @@ impl std::fmt::Display for HeldOpen {
             Self::Cloth(panels) => write!(f, "cloth of panel {} lies between its sides", quoted(panels)),
             Self::Body => write!(
                 f,
-                "the body lies between its sides: the garment is too small there to go round it"
+                "the body lies between its sides: the garment is too small there to go round it, \
+                 or went round it on the wrong side"
             ),
             Self::Nothing => write!(
                 f,

@@ -13,7 +13,7 @@ pub use settings::{DrapeSettings, SewingSettings};
 pub use untangling_at_rest::UntanglingAtRest;
 pub use weld_crossings::WeldCrossings;
 
-use crate::garment::{Garment, GarmentError, HeldOpen, Welded};
+use crate::garment::{Garment, GarmentError, HeldOpen, Ring, Welded};
 use crate::pattern::BodyPart;
 use caught::Catcher;
 use cloth_core::{
@@ -436,7 +436,15 @@ where
                     HeldOpen::Body => (false, true),
                     HeldOpen::Nothing => (false, false),
                 };
-                match AtStrongest::choose(gap, weld, ZIP_WELD * spacing, cloth, body) {
+                // What closing asks of the cloth round the body: a zip's bound where
+                // nothing lies between, and the failure's figure where it fails.
+                let ring = if gap > weld {
+                    ring_of(garment, &sim, bodies.as_ref(), seam)
+                } else {
+                    None
+                };
+                let takes_it = ring.as_ref().is_some_and(|r| r.closing_strain() <= ZIP_RING);
+                match AtStrongest::choose(gap, weld, ZIP_WELD * spacing, cloth, body, takes_it) {
                     AtStrongest::Weld => {
                         stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Welded));
                         break;
@@ -472,6 +480,7 @@ where
                             weld_mm: 1e3 * reach,
                             held_by: own,
                             others_held_by: zip::held_open(garment, &sim, bodies.as_ref(), &others),
+                            ring: ring.map(Box::new),
                         });
                     }
                 }
@@ -801,6 +810,18 @@ pub const FORCED_WELD: f64 = 0.5;
 /// stretched to 44 % (p99 weft) and did not come to rest in 791 drape steps.
 pub const ZIP_WELD: f64 = 1.0;
 
+/// Seams wider than [`ZIP_WELD`] apart when the pull at its strongest stalls, with
+/// nothing between their sides, are zipped shut still where closing stretches the ring
+/// round the body through the widest pair (see [`crate::garment::Ring`]) by no more than
+/// this: about as far as the strongest pull stretches cloth held open (GarmentCode's
+/// pencil skirts, closed at 1,024 times the pull round hips as wide as them, keep under
+/// 20 %; see [`TORN_P99`]). GarmentCode's rand_1_001 on `mean_male`, a waistband alone,
+/// stopped 17.9 mm open, its ring asking 8 %: zipped. Its rand_1_071 and rand_1_095 on
+/// `mean_all`, sleeves whose ends are cut to the wrist's girth (16.6 cm) and end at the
+/// forearm (25.2 cm round there), stopped 26 and 22 mm open, their rings round the arm
+/// asking 63 and 51 %: failed, saying so.
+pub const ZIP_RING: f64 = 0.15;
+
 /// How many stalls that let cloth found across the seams through put off the end of a
 /// pull at its strongest (a weld where they stand, or the sewing's failure). GarmentCode's
 /// rand_1_022, a waistband 13 cm short of closing over a flounced skirt, found new cloth
@@ -820,6 +841,20 @@ const STIFF_BOOST: f64 = 16.0;
 /// percent, warp or weft) tears it instead of closing a seam: GarmentCode's pencil skirts,
 /// closed at 1,024 times the pull round hips as wide as them, keep under 20 %.
 const TORN_P99: f64 = 50.0;
+
+/// The ring round the body through the widest pair of seam `seam` in `sim` (see
+/// [`crate::garment::Ring`]).
+fn ring_of(garment: &Garment, sim: &Simulation, bodies: &dyn Collider, seam: usize) -> Option<Ring> {
+    let x = sim.positions();
+    let gap = |&[a, b]: &[usize; 2]| (x[a] - x[b]).norm();
+    let widest = garment.seams[seam]
+        .pairs
+        .iter()
+        .max_by(|p, q| gap(p).total_cmp(&gap(q)))?;
+    garment.ring_through(x, seam, *widest, |points| {
+        zip::goes_round(bodies, sim.time(), points)
+    })
+}
 
 /// Whether the cloth at `x` is torn (see [`TORN_P99`]).
 fn torn(mesh: &cloth_core::ClothMesh, x: &[Vec3]) -> bool {
