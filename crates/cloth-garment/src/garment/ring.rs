@@ -61,9 +61,10 @@ impl Garment {
         pair: [usize; 2],
         round: impl Fn(&[Vec3]) -> bool,
     ) -> Option<Ring> {
+        let ways = Ways::new(self, x);
         let mut without = vec![seam];
         for _ in 0..TRIES {
-            let way = self.shortest_way(x, &without, pair)?;
+            let way = ways.shortest(self, x, &without, pair)?;
             let points: Vec<Vec3> = way.particles.iter().map(|&i| x[i]).collect();
             // A way over seams' pairs alone (a corner where the pair's sides meet other
             // seams) has no cloth to stretch: no ring.
@@ -77,29 +78,43 @@ impl Garment {
         }
         None
     }
+}
 
-    /// The shortest way from one side of `pair` to the other at `x`, over the cloth and
-    /// the pairs of the seams not in `without` (see [`Garment::ring_through`]).
-    fn shortest_way(&self, x: &[Vec3], without: &[usize], pair: [usize; 2]) -> Option<Ring> {
-        let n = self.mesh.vertex_count();
-        let uv = self.mesh.uv();
-        // Neighbours with the cost of the way to them, and the seam joining them, if any.
-        let mut links: Vec<Vec<(usize, f64, Option<usize>)>> = vec![Vec::new(); n];
-        for &[i, j] in self.mesh.edges() {
+/// The cloth's edges and the seams' pairs as a graph, made once for every way tried.
+struct Ways {
+    /// Each particle's neighbours, the cost of the step to each (rest length, or a pair's
+    /// gap) and the seam of a pair.
+    links: Vec<Vec<(usize, f64, Option<usize>)>>,
+    /// The panel of each particle.
+    panel: Vec<usize>,
+}
+
+impl Ways {
+    fn new(garment: &Garment, x: &[Vec3]) -> Self {
+        let uv = garment.mesh.uv();
+        let mut links: Vec<Vec<(usize, f64, Option<usize>)>> = vec![Vec::new(); garment.mesh.vertex_count()];
+        for &[i, j] in garment.mesh.edges() {
             let rest = (uv[i] - uv[j]).norm();
             links[i].push((j, rest, None));
             links[j].push((i, rest, None));
         }
-        for (s, other) in self.seams.iter().enumerate() {
-            if without.contains(&s) {
-                continue;
-            }
-            for &[i, j] in &other.pairs {
+        for (s, seam) in garment.seams.iter().enumerate() {
+            for &[i, j] in &seam.pairs {
                 let gap = (x[i] - x[j]).norm();
                 links[i].push((j, gap, Some(s)));
                 links[j].push((i, gap, Some(s)));
             }
         }
+        Self {
+            links,
+            panel: garment.particle_panels(),
+        }
+    }
+
+    /// The shortest way from one side of `pair` to the other at `x`, over the cloth and
+    /// the pairs of the seams not in `without` (see [`Garment::ring_through`]).
+    fn shortest(&self, garment: &Garment, x: &[Vec3], without: &[usize], pair: [usize; 2]) -> Option<Ring> {
+        let n = self.links.len();
         let [from, to] = pair;
         let mut cost = vec![f64::INFINITY; n];
         let mut prev = vec![(usize::MAX, None); n];
@@ -114,7 +129,10 @@ impl Garment {
             if i == to {
                 break;
             }
-            for &(j, step, by) in &links[i] {
+            for &(j, step, by) in &self.links[i] {
+                if by.is_some_and(|s| without.contains(&s)) {
+                    continue;
+                }
                 let e = c + step;
                 if e < cost[j] {
                     cost[j] = e;
@@ -126,7 +144,7 @@ impl Garment {
         if !cost[to].is_finite() {
             return None;
         }
-        let panel = self.particle_panels();
+        let uv = garment.mesh.uv();
         let (mut rest, mut now) = (0.0, (x[from] - x[to]).norm());
         let (mut particles, mut seams) = (vec![to], Vec::new());
         let mut i = to;
@@ -144,7 +162,7 @@ impl Garment {
         particles.reverse();
         let mut panels: Vec<String> = Vec::new();
         for &i in &particles {
-            let name = &self.panel_names[panel[i]];
+            let name = &garment.panel_names[self.panel[i]];
             if !panels.contains(name) {
                 panels.push(name.clone());
             }
