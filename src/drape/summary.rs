@@ -1,7 +1,7 @@
 //! The batch's summary: one entry per pattern, read back from the report its run wrote,
 //! as JSON (`summary.json`) and as a table (`summary.md`).
 
-use crate::scene_file::{CLEAN, CLEAN_P99_STRAIN};
+use crate::scene_file::{CLEAN, CLEAN_P99_STRAIN, REASONS};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::fmt::Write as _;
@@ -120,7 +120,24 @@ impl SummaryEntry {
     pub fn finished(&self) -> bool {
         self.outcome == "finished"
     }
+
+    /// This run, interrupted by a time limit of `limit` s rather than by the user, as a
+    /// failure that says so.
+    pub fn stopped_by_time_limit(&mut self, limit: f64) {
+        self.outcome = "failed".into();
+        self.failure = Some(format!(
+            "{TIME_LIMIT} of {limit} s ({})",
+            self.failure.as_deref().unwrap_or("")
+        ));
+    }
+
+    fn timed_out(&self) -> bool {
+        self.failure.as_deref().is_some_and(|f| f.starts_with(TIME_LIMIT))
+    }
 }
+
+/// What a run stopped by the batch's time limit says first.
+const TIME_LIMIT: &str = "stopped by the time limit";
 
 /// Writes `summary.json` and `summary.md` into `dir` (each whole, then renamed into
 /// place, so a batch killed while writing leaves the last complete one).
@@ -142,6 +159,7 @@ fn markdown(entries: &[SummaryEntry]) -> String {
          through itself or the body, p99 warp and weft strain under {CLEAN_P99_STRAIN} %).\n\n",
         entries.len()
     );
+    out += &tally(entries);
     out += "| pattern | outcome | seconds | particles | sewing steps | draping steps | self / body intersections | deepest penetration, mm | max warp / weft, % | p99 warp / weft, % | verdict, or why it failed |\n";
     out += "|---|---|---|---|---|---|---|---|---|---|---|\n";
     let num = |v: Option<f64>, digits: usize| v.map_or("-".to_string(), |x| format!("{x:.digits$}"));
@@ -182,4 +200,140 @@ fn markdown(entries: &[SummaryEntry]) -> String {
         );
     }
     out
+}
+
+/// The lines under the count: how many garments each reason left unclean, how many
+/// failed, and the time a pattern took in this batch (those finished by an earlier batch
+/// left out), so that a corpus run reads as one line of figures.
+fn tally(entries: &[SummaryEntry]) -> String {
+    let mut out = String::new();
+    let finished: Vec<&SummaryEntry> = entries.iter().filter(|e| e.finished()).collect();
+    let unclean = finished
+        .iter()
+        .filter(|e| e.verdict.as_deref().is_some_and(|v| v != CLEAN))
+        .count();
+    if unclean > 0 {
+        // A verdict's reasons are joined by "; ", each beginning with its kind.
+        let counts: Vec<String> = REASONS
+            .iter()
+            .map(|reason| {
+                let n = finished
+                    .iter()
+                    .filter(|e| {
+                        e.verdict
+                            .as_deref()
+                            .is_some_and(|v| v.split("; ").any(|r| r.starts_with(reason)))
+                    })
+                    .count();
+                format!("{reason} {n}")
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "Finished but not clean: {unclean} ({}; a garment may have more than one reason).\n",
+            counts.join(", ")
+        );
+    }
+    let failed: Vec<&SummaryEntry> = entries.iter().filter(|e| e.outcome == "failed").collect();
+    if !failed.is_empty() {
+        let timed_out = failed.iter().filter(|e| e.timed_out()).count();
+        let _ = writeln!(
+            out,
+            "Failed: {} ({timed_out} of them {TIME_LIMIT}).\n",
+            failed.len()
+        );
+    }
+    let mut times: Vec<(f64, &str)> = entries
+        .iter()
+        .filter(|e| !e.skipped)
+        .map(|e| (e.seconds, e.name.as_str()))
+        .collect();
+    times.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some(&(slowest, name)) = times.last() {
+        let n = times.len();
+        let median = if n % 2 == 1 {
+            times[n / 2].0
+        } else {
+            0.5 * (times[n / 2 - 1].0 + times[n / 2].0)
+        };
+        let _ = writeln!(
+            out,
+            "Time per pattern, over the {n} run in this batch: median {median:.1} s, slowest {slowest:.1} s ({name}).\n"
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entry(name: &str, seconds: f64, verdict: Option<&str>) -> SummaryEntry {
+        let mut e = SummaryEntry::refused(name, Path::new("p.json"), "refused".into(), seconds);
+        if let Some(v) = verdict {
+            e.outcome = "finished".into();
+            e.failure = None;
+            e.verdict = Some(v.into());
+        }
+        e
+    }
+
+    #[test]
+    fn the_summary_counts_each_reason_and_failure_and_times_the_patterns_run() {
+        let mut timed_out = entry("slow", 600.4, None);
+        timed_out.outcome = "interrupted".into();
+        timed_out.failure = Some("interrupted at draping step 90".into());
+        timed_out.stopped_by_time_limit(600.0);
+        let mut earlier = entry("earlier", 900.0, Some(CLEAN));
+        earlier.skipped = true;
+        let entries = [
+            entry("a", 10.0, Some(CLEAN)),
+            entry("b", 20.0, Some("stretched: p99 weft strain 8.0 %, over 5 %")),
+            entry(
+                "c",
+                40.0,
+                Some("through itself: 2 edge-triangle pairs; stretched: p99 weft strain 6.1 %, over 5 %"),
+            ),
+            entry("d", 5.0, None),
+            timed_out,
+            earlier,
+        ];
+        let table = markdown(&entries);
+        assert!(
+            table.contains("4 of 6 patterns finished, 2 of them clean"),
+            "{table}"
+        );
+        assert!(
+            table.contains(
+                "Finished but not clean: 2 (not at rest 0, through itself 1, through the body 0, stretched 2;"
+            ),
+            "{table}"
+        );
+        assert!(
+            table.contains("Failed: 2 (1 of them stopped by the time limit)."),
+            "{table}"
+        );
+        assert!(
+            entries[4].failure.as_deref().is_some_and(
+                |f| f.starts_with("stopped by the time limit of 600 s (interrupted at draping step 90)")
+            ),
+            "{:?}",
+            entries[4].failure
+        );
+        // The one finished by an earlier batch is not timed: of 5, 6 and 10, 20, 40, 600.4.
+        assert!(
+            table.contains("over the 5 run in this batch: median 20.0 s, slowest 600.4 s (slow)."),
+            "{table}"
+        );
+    }
+
+    #[test]
+    fn a_batch_all_clean_says_no_reasons_and_an_even_count_takes_the_middle_two() {
+        let table = markdown(&[entry("a", 10.0, Some(CLEAN)), entry("b", 30.0, Some(CLEAN))]);
+        assert!(
+            !table.contains("not clean") && !table.contains("Failed"),
+            "{table}"
+        );
+        assert!(table.contains("median 20.0 s, slowest 30.0 s (b)"), "{table}");
+    }
 }

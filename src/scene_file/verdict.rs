@@ -15,6 +15,14 @@ const NAMED: usize = 3;
 /// What is said of a garment that ended clean.
 pub const CLEAN: &str = "clean";
 
+/// What each reason a garment is not clean begins with, in the order a verdict gives them
+/// (each followed by ": " and its figures).
+const NOT_AT_REST: &str = "not at rest";
+const THROUGH_ITSELF: &str = "through itself";
+const THROUGH_THE_BODY: &str = "through the body";
+const STRETCHED: &str = "stretched";
+pub const REASONS: [&str; 4] = [NOT_AT_REST, THROUGH_ITSELF, THROUGH_THE_BODY, STRETCHED];
+
 /// The verdict on a garment's run: `None` if it did not finish (its failure says why),
 /// else [`CLEAN`] or its reasons, joined by "; ".
 pub fn verdict(
@@ -31,7 +39,7 @@ pub fn verdict(
     let mut reasons = Vec::new();
     if let Some(last) = stages.last().filter(|s| s.ended != "at_rest") {
         reasons.push(format!(
-            "not at rest: the {} ended at its step limit after {} steps",
+            "{NOT_AT_REST}: the {} ended at its step limit after {} steps",
             last.stage, last.steps
         ));
     }
@@ -52,13 +60,13 @@ pub fn verdict(
     };
     if self_intersections > 0 {
         reasons.push(format!(
-            "through itself: {self_intersections} edge-triangle pairs{}",
+            "{THROUGH_ITSELF}: {self_intersections} edge-triangle pairs{}",
             named(&|p| p.self_intersections)
         ));
     }
     if body_intersections > 0 {
         reasons.push(format!(
-            "through the body: {body_intersections} crossings{}",
+            "{THROUGH_THE_BODY}: {body_intersections} crossings{}",
             named(&|p| p.body_intersections)
         ));
     }
@@ -74,7 +82,7 @@ pub fn verdict(
             .take(NAMED)
             .map(|p| format!("'{}' {:.1} % {}", p.panel, p.strain.p99().0, p.strain.p99().1))
             .collect();
-        let whole = format!("stretched: p99 {thread} strain {p99:.1} %, over {CLEAN_P99_STRAIN} %");
+        let whole = format!("{STRETCHED}: p99 {thread} strain {p99:.1} %, over {CLEAN_P99_STRAIN} %");
         reasons.push(if most.is_empty() {
             whole
         } else {

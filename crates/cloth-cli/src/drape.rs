@@ -165,12 +165,7 @@ fn drape_one(
     };
     // Interrupted, and not by Ctrl-C: the deadline passed.
     if entry.outcome == "interrupted" && !interrupted.load(Ordering::Relaxed) {
-        entry.outcome = "failed".into();
-        entry.failure = Some(format!(
-            "stopped by the time limit of {} s ({})",
-            args.time_limit.unwrap_or(0.0),
-            entry.failure.as_deref().unwrap_or("")
-        ));
+        entry.stopped_by_time_limit(args.time_limit.unwrap_or(0.0));
     }
     if entry.finished() {
         if let Err(e) = request.mark_finished(&folder) {
