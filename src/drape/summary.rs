@@ -1,7 +1,7 @@
 //! The batch's summary: one entry per pattern, read back from the report its run wrote,
 //! as JSON (`summary.json`) and as a table (`summary.md`).
 
-use crate::scene_file::{CLEAN, CLEAN_P99_STRAIN, REASONS};
+use crate::scene_file::{median, CLEAN, CLEAN_P99_STRAIN, REASONS};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::fmt::Write as _;
@@ -207,58 +207,46 @@ fn markdown(entries: &[SummaryEntry]) -> String {
 /// left out), so that a corpus run reads as one line of figures.
 fn tally(entries: &[SummaryEntry]) -> String {
     let mut out = String::new();
-    let finished: Vec<&SummaryEntry> = entries.iter().filter(|e| e.finished()).collect();
-    let unclean = finished
+    // Only a finished garment has a verdict; its reasons are joined by "; ", each
+    // beginning with its kind.
+    let unclean: Vec<&str> = entries
         .iter()
-        .filter(|e| e.verdict.as_deref().is_some_and(|v| v != CLEAN))
-        .count();
-    if unclean > 0 {
-        // A verdict's reasons are joined by "; ", each beginning with its kind.
+        .filter_map(|e| e.verdict.as_deref())
+        .filter(|&v| v != CLEAN)
+        .collect();
+    if !unclean.is_empty() {
         let counts: Vec<String> = REASONS
             .iter()
             .map(|reason| {
-                let n = finished
+                let n = unclean
                     .iter()
-                    .filter(|e| {
-                        e.verdict
-                            .as_deref()
-                            .is_some_and(|v| v.split("; ").any(|r| r.starts_with(reason)))
-                    })
+                    .filter(|v| v.split("; ").any(|r| r.starts_with(reason)))
                     .count();
                 format!("{reason} {n}")
             })
             .collect();
         let _ = writeln!(
             out,
-            "Finished but not clean: {unclean} ({}; a garment may have more than one reason).\n",
+            "Finished but not clean: {} ({}; a garment may have more than one reason).\n",
+            unclean.len(),
             counts.join(", ")
         );
     }
-    let failed: Vec<&SummaryEntry> = entries.iter().filter(|e| e.outcome == "failed").collect();
-    if !failed.is_empty() {
-        let timed_out = failed.iter().filter(|e| e.timed_out()).count();
-        let _ = writeln!(
-            out,
-            "Failed: {} ({timed_out} of them {TIME_LIMIT}).\n",
-            failed.len()
-        );
+    let failed = entries.iter().filter(|e| e.outcome == "failed").count();
+    if failed > 0 {
+        let timed_out = entries.iter().filter(|e| e.timed_out()).count();
+        let _ = writeln!(out, "Failed: {failed} ({timed_out} of them {TIME_LIMIT}).\n");
     }
-    let mut times: Vec<(f64, &str)> = entries
-        .iter()
-        .filter(|e| !e.skipped)
-        .map(|e| (e.seconds, e.name.as_str()))
-        .collect();
-    times.sort_by(|a, b| a.0.total_cmp(&b.0));
-    if let Some(&(slowest, name)) = times.last() {
-        let n = times.len();
-        let median = if n % 2 == 1 {
-            times[n / 2].0
-        } else {
-            0.5 * (times[n / 2 - 1].0 + times[n / 2].0)
-        };
+    let run: Vec<&SummaryEntry> = entries.iter().filter(|e| !e.skipped).collect();
+    if let Some(slowest) = run.iter().max_by(|a, b| a.seconds.total_cmp(&b.seconds)) {
+        let seconds: Vec<f64> = run.iter().map(|e| e.seconds).collect();
         let _ = writeln!(
             out,
-            "Time per pattern, over the {n} run in this batch: median {median:.1} s, slowest {slowest:.1} s ({name}).\n"
+            "Time per pattern, over the {} run in this batch: median {:.1} s, slowest {:.1} s ({}).\n",
+            run.len(),
+            median(&seconds),
+            slowest.seconds,
+            slowest.name
         );
     }
     out
@@ -320,7 +308,8 @@ mod tests {
             "{:?}",
             entries[4].failure
         );
-        // The one finished by an earlier batch is not timed: of 5, 6 and 10, 20, 40, 600.4.
+        // The one finished by an earlier batch is not timed: the median of 5, 10, 20, 40 and
+        // 600.4.
         assert!(
             table.contains("over the 5 run in this batch: median 20.0 s, slowest 600.4 s (slow)."),
             "{table}"

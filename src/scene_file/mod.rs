@@ -23,6 +23,7 @@ pub use folder::{claim_output_folder, FolderRun, RunFolderError};
 pub use frame::{placement, UpAxis};
 pub use observer::RunObserver;
 pub use panel_report::PanelReport;
+pub(crate) use recorder::median;
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
 pub use report::{
     Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, StrainSummary,

@@ -244,7 +244,8 @@ impl<'a> Recorder<'a> {
     }
 }
 
-fn median(values: &[f64]) -> f64 {
+/// The median of `values` (the mean of the middle two of an even count; 0 for none).
+pub(crate) fn median(values: &[f64]) -> f64 {
     let mut v = values.to_vec();
     v.sort_by(f64::total_cmp);
     match v.len() {
