@@ -339,9 +339,12 @@ class Draped:
     def seconds(self) -> float: ...
     @property
     def untangling_at_rest(self) -> dict[str, Any] | None:
-        """If the drape came to rest through itself, the garment draped again loose where
-        it crossed: ``before`` and ``after`` (the crossings of the first and second drape),
-        ``steps`` (the second's), ``kept`` (whether the second was kept); else None."""
+        """If the drape came to rest through itself, what was done: ``before`` (the
+        crossings where it first rested); ``smoothed``, the cloth smoothed apart there
+        (``before``, ``left``, ``rounds``, ``most_moved`` in m) and ``draped_on`` from there
+        (``after``, ``steps``, ``kept``; None if the smoothing left no fewer); ``loose``,
+        if it still crossed, the garment draped again from sewn, loose where it crossed
+        (``after``, ``steps``, ``kept``), or None; else None."""
 
 @final
 class StepStats:

@@ -89,12 +89,33 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
         )?;
     }
     if let Some(u) = report.untangling_at_rest {
-        let kept = if u.kept { "the second" } else { "the first" };
+        let s = u.smoothed.smoothing;
+        let on = match u.smoothed.draped_on {
+            Some(d) => format!(
+                "{} ({} through the body) in {} steps draped on, {} kept",
+                d.after,
+                d.body_after,
+                d.steps,
+                if d.kept { "that" } else { "the first" }
+            ),
+            None => "not draped on".to_string(),
+        };
         writeln!(
             out,
-            "| at rest through itself, draped again loose where it crossed: crossings first / second, its steps | {} / {} in {} steps, {kept} kept |",
-            u.before, u.after, u.steps
+            "| at rest through itself, smoothed apart where it crossed: crossings first / after smoothing ({} rounds, {:.1} mm at most) / at rest after | {} / {} / {on} |",
+            s.rounds,
+            1e3 * s.most_moved,
+            u.before,
+            s.left
         )?;
+        if let Some(d) = u.loose {
+            let kept = if d.kept { "this one" } else { "the one before" };
+            writeln!(
+                out,
+                "| still through itself, draped again from sewn, loose where it crossed: crossings at rest, its steps | {} ({} through the body) in {} steps, {kept} kept |",
+                d.after, d.body_after, d.steps
+            )?;
+        }
     }
     if let Some(n) = report.attached_particles.filter(|&n| n > 0) {
         writeln!(

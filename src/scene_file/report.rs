@@ -139,8 +139,9 @@ pub struct RunReport {
     /// The cloth's crossings the weld made, and those left after clearing them (garments
     /// that were sewn only).
     pub weld_crossings: Option<crate::garment::sewing::WeldCrossings>,
-    /// The second drape of a garment that came to rest through itself: its crossings
-    /// before and after, and whether the second drape was kept (garments only).
+    /// What was done with a garment that came to rest through itself: smoothed apart and
+    /// draped on, then draped again loose if it still crossed; each one's crossings and
+    /// whether it was kept (garments only).
     pub untangling_at_rest: Option<crate::garment::sewing::UntanglingAtRest>,
     /// Particles of the pattern's attached edges (a waist, a neckline), each held on one
     /// side of where it was placed (garments only).

@@ -107,6 +107,46 @@ fn pieces_through_each_other_at_the_start_come_apart_then_collide() {
 }
 
 #[test]
+fn pieces_moved_apart_collide_from_the_next_step_on() {
+    // Tangled at the start, then the strip moved out of the sheet by hand (as a garment
+    // at rest through itself is smoothed apart): released there, before any step, so the
+    // next step cannot take it back through the sheet unseen.
+    let (mesh, first_strip) = crossed(0.035);
+    let mut sim = simulation(mesh, Vec3::zeros(), first_strip);
+    assert_eq!(sim.tangles()[0].released, None);
+    let lifted: Vec<Vec3> = sim
+        .positions()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            if i >= first_strip {
+                p + Vec3::new(0.0, 0.0, 0.04)
+            } else {
+                *p
+            }
+        })
+        .collect();
+    sim.set_positions(&lifted).unwrap();
+    assert_eq!(sim.self_intersections().count, 0);
+    assert_eq!(sim.tangles()[0].released, Some(0));
+    // Thrown down through the sheet from there, it lands on it.
+    let v: Vec<Vec3> = (0..lifted.len())
+        .map(|i| {
+            if i >= first_strip {
+                Vec3::new(0.0, 0.0, -1.0)
+            } else {
+                Vec3::zeros()
+            }
+        })
+        .collect();
+    sim.set_velocities(&v).unwrap();
+    for _ in 0..15 {
+        let stats = sim.step().unwrap();
+        assert_eq!(sim.self_intersections().count, 0, "step {}", stats.step);
+    }
+}
+
+#[test]
 fn pieces_apart_at_the_start_are_not_tangled() {
     // The strip's lower edge 1 cm above the sheet.
     let (mesh, first_strip) = crossed(-0.01);

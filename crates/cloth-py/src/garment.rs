@@ -299,9 +299,9 @@ pub struct Draped {
     pub outcome: Py<RestOutcome>,
     /// Wall time, s.
     pub seconds: f64,
-    /// If the drape came to rest through itself: the garment draped again loose where it
-    /// crossed, as a dict (`before`, `after`: the crossings of the first and second drape;
-    /// `steps`: the second's; `kept`: whether the second was kept), as a scene's
-    /// report.json gives it; None otherwise.
+    /// If the drape came to rest through itself, what was done, as a dict as a scene's
+    /// report.json gives it (`before`: the crossings where it first rested; `smoothed`:
+    /// the smoothing apart there and the drape on from there; `loose`: the drape again
+    /// from sewn, loose, if it still crossed); None otherwise.
     pub untangling_at_rest: Py<PyAny>,
 }

@@ -523,10 +523,13 @@ impl Simulation {
         Ok(())
     }
     /// Moves the particles (one finite point per particle). Pins keep their targets, so a
-    /// pinned particle moved here goes back to its pin in the next step.
+    /// pinned particle moved here goes back to its pin in the next step. Pieces that began
+    /// through each other and are apart where moved collide again from the next step on
+    /// (else the step would let them pass back through each other).
     pub fn set_positions(&mut self, x: &[Vec3]) -> Result<(), ParamError> {
         per_particle("positions", x, self.x.len())?;
         self.x.copy_from_slice(x);
+        self.release_untangled();
         // The warm start and the contact states were of the old configuration.
         self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
         if let Some(c) = &mut self.contacts {
@@ -1098,6 +1101,14 @@ impl Simulation {
             return;
         };
         sc.pull_apart(&mut self.x);
+        self.release_untangled();
+    }
+
+    /// Lets the tangled pieces that no longer pass through each other collide again.
+    fn release_untangled(&mut self) {
+        let Some(sc) = self.self_contacts.as_mut() else {
+            return;
+        };
         if !sc.has_tangles() {
             return;
         }

@@ -4,13 +4,15 @@
 mod caught;
 mod cut_off;
 mod settings;
+mod smoothing_apart;
 mod untangling_at_rest;
 mod weld_crossings;
 mod zip;
 
 pub use caught::CaughtLayer;
 pub use settings::{DrapeSettings, SewingSettings};
-pub use untangling_at_rest::UntanglingAtRest;
+pub use smoothing_apart::Smoothing;
+pub use untangling_at_rest::{Crossed, DrapedAgain, SmoothedOn, UntanglingAtRest};
 pub use weld_crossings::WeldCrossings;
 
 use crate::garment::{Garment, GarmentError, HeldOpen, Ring, Welded};
@@ -695,7 +697,7 @@ pub struct Draped {
     pub outcome: RestOutcome,
     pub seconds: f64,
     pub cg_iterations: usize,
-    /// The second drape of a garment at rest through itself, if it was (see
+    /// What was done with a garment at rest through itself, if it was (see
     /// `untangling_at_rest`).
     pub untangling: Option<UntanglingAtRest>,
 }
@@ -727,8 +729,9 @@ pub fn drape_simulation(
 }
 
 /// Drapes the sewn garment until at rest (the source's stopping mechanism) or the step
-/// limit; at rest through itself, it is draped again, loose where it crosses, and the
-/// drape crossing less kept (see `untangling_at_rest`).
+/// limit; at rest through itself, it is smoothed apart where it crosses and draped on,
+/// and if it still crosses, draped again, loose where it crosses, and the drape crossing
+/// least kept (see `untangling_at_rest`).
 /// `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]), as may
 /// `interrupt` inside a step.
 pub fn drape(
@@ -754,25 +757,69 @@ pub fn drape(
     };
     let mut outcome = simulation.run_to_rest_with(&rest, &mut watch).map_err(failed)?;
     let mut untangling = None;
-    let before = simulation.self_intersections().count;
+    let crossed = |sim: &Simulation| Crossed {
+        cloth: sim.self_intersections().count,
+        body: sim.body_intersections(),
+    };
+    let first_crossed = crossed(&simulation);
+    let before = first_crossed.cloth;
     if outcome.reason == cloth_core::StopReason::AtRest && before > 0 {
-        // Through itself at rest: draped again from where it was sewn, loose where it
-        // crosses (see `untangling_at_rest`).
-        let mut again = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
-        again.set_interrupt(interrupt.clone());
-        again.set_loose_pull(true);
-        // A second drape that fails loses nothing: the first rest stands.
-        if let Ok(second) = again.run_to_rest_with(&rest, &mut watch) {
-            let report = UntanglingAtRest::new(before, again.self_intersections().count, &second);
-            if report.kept {
-                simulation = again;
-                outcome = RestOutcome {
-                    steps: outcome.steps + second.steps,
-                    ..second
-                };
+        // Through itself at rest: smoothed apart there and draped on; if it still
+        // crosses, draped again from where it was sewn, loose where it crosses (see
+        // `untangling_at_rest`). A drape after the first that fails loses nothing: the
+        // rest before it stands.
+        let first = (simulation.positions().to_vec(), simulation.velocities().to_vec());
+        let (smoothing, smoothed) = smoothed_apart(&simulation, collider.as_ref());
+        let mut best = first_crossed;
+        let mut draped_on = None;
+        if smoothing.left < before {
+            let on = simulation
+                .set_positions(&smoothed)
+                .and_then(|()| simulation.set_velocities(&vec![Vec3::zeros(); smoothed.len()]))
+                .map_err(SimError::from)
+                .and_then(|()| simulation.run_to_rest_with(&rest, &mut watch));
+            let after = crossed(&simulation);
+            let report = on.as_ref().ok().map(|on| DrapedAgain::new(best, after, on));
+            match (on, report) {
+                (Ok(on), Some(report)) if report.kept => {
+                    outcome = RestOutcome {
+                        steps: outcome.steps + on.steps,
+                        ..on
+                    };
+                    best = after;
+                }
+                _ => {
+                    // Back to where the first drape rested.
+                    let back = simulation
+                        .set_positions(&first.0)
+                        .and_then(|()| simulation.set_velocities(&first.1));
+                    back.map_err(|e| failed(e.into()))?;
+                }
             }
-            untangling = Some(report);
+            draped_on = report;
         }
+        let mut loose = None;
+        if best.cloth > 0 {
+            let mut again = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
+            again.set_interrupt(interrupt.clone());
+            again.set_loose_pull(true);
+            if let Ok(second) = again.run_to_rest_with(&rest, &mut watch) {
+                let report = DrapedAgain::new(best, crossed(&again), &second);
+                if report.kept {
+                    simulation = again;
+                    outcome = RestOutcome {
+                        steps: outcome.steps + second.steps,
+                        ..second
+                    };
+                }
+                loose = Some(report);
+            }
+        }
+        untangling = Some(UntanglingAtRest {
+            before,
+            smoothed: SmoothedOn { smoothing, draped_on },
+            loose,
+        });
     }
     Ok(Draped {
         simulation,
@@ -781,6 +828,27 @@ pub fn drape(
         cg_iterations: cg,
         untangling,
     })
+}
+
+/// The positions of `simulation`'s cloth smoothed apart where it passes through itself
+/// (see `smoothing_apart`), pinned particles staying, none let into `bodies`.
+fn smoothed_apart(simulation: &Simulation, bodies: &dyn Collider) -> (Smoothing, Vec<Vec3>) {
+    let mut pinned = vec![false; simulation.positions().len()];
+    for pin in simulation.pins() {
+        pinned[pin.particle] = true;
+    }
+    let passes = simulation.passes_thin_parts();
+    let t = simulation.time();
+    let mut x = simulation.positions().to_vec();
+    let smoothing = smoothing_apart::smooth_apart(
+        simulation.mesh(),
+        simulation.seams(),
+        simulation.self_exemption_radius(),
+        &mut x,
+        |i| pinned[i],
+        |i, from, to| smoothing_apart::kept_out(bodies, t, passes[i], from, to),
+    );
+    (smoothing, x)
 }
 
 /// The most the pull is raised for seams that stall, over its full strength: far past
