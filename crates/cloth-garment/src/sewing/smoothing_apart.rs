@@ -1,9 +1,9 @@
 //! Cloth at rest through itself, smoothed apart where it crosses.
 //!
 //! What a garment still crosses at rest, the drape's pull (intersection contour
-//! minimisation, see `cloth_core`'s untangling) could not shorten: every crossing left at
-//! rest on GarmentCode's designs lies where the cloth folds through itself within a cell
-//! or two (a front's corner pinched through itself under a hood, rand_1_069), or where an
+//! minimisation, see `cloth_core`'s untangling) could not shorten: the crossings looked
+//! at on GarmentCode's designs lie where the cloth folds through itself within a cell or
+//! two (a front's corner pinched through itself under a hood, rand_1_069), or where an
 //! insert twists through the skirt beside the seam that joins them (the godets of
 //! rand_1_091). There the curve the two pieces cross along ends at particles they share, or
 //! runs into pairs near for good, which the collision and the count exempt: it has no ends
@@ -12,8 +12,8 @@
 //!
 //! A fold or twist that tight is a kink, and a kink smooths out: each particle within two
 //! rings of a crossing moved halfway to the mean of its neighbours, round after round,
-//! cleared both (rand_1_069 in 7 rounds, no particle moved more than 9 mm; rand_1_091 in
-//! 16, 17 mm), and rand_1_009's flounces (75 crossings, cleared in 34 rounds) and
+//! cleared both (rand_1_069 in 6 rounds, no particle moved more than 9 mm; rand_1_091 in
+//! 13, 17 mm), and rand_1_009's flounces (75 crossings, cleared in 34 rounds) and
 //! rand_1_094's one crossing. Smoothing pulls cloth lying on a curved body inward, so no
 //! particle is let into a body: a move that would enter one, or end within its contact
 //! layer, ends on the layer. The drape then goes on from there, its collision holding
