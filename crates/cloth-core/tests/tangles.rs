@@ -30,17 +30,16 @@ fn crossed(below: f64) -> (ClothMesh, usize) {
     (ClothMesh::new(positions, uv, triangles).unwrap(), n)
 }
 
+/// Per particle of the `n`, `strip` for the strip's (from `first_strip` on), zero for the
+/// sheet's.
+fn strip_only(n: usize, first_strip: usize, strip: Vec3) -> Vec<Vec3> {
+    (0..n)
+        .map(|i| if i >= first_strip { strip } else { Vec3::zeros() })
+        .collect()
+}
+
 fn simulation(mesh: ClothMesh, strip_velocity: Vec3, first_strip: usize) -> Simulation {
-    let n = mesh.vertex_count();
-    let v = (0..n)
-        .map(|i| {
-            if i >= first_strip {
-                strip_velocity
-            } else {
-                Vec3::zeros()
-            }
-        })
-        .collect();
+    let v = strip_only(mesh.vertex_count(), first_strip, strip_velocity);
     SimulationBuilder::new(mesh, Fabric::cotton_like().with_damping(0.01))
         .settings(SolverSettings {
             gravity: Vec3::zeros(),
@@ -77,17 +76,8 @@ fn pieces_through_each_other_at_the_start_come_apart_then_collide() {
     assert!((3..=6).contains(&at), "released after step {at}");
     assert_eq!(sim.self_intersections().count, 0);
     // Apart, they collide: the strip thrown back down lands on the sheet, not through it.
-    let x = sim.positions().to_vec();
-    let v: Vec<Vec3> = (0..x.len())
-        .map(|i| {
-            if i >= first_strip {
-                Vec3::new(0.0, 0.0, -1.0)
-            } else {
-                Vec3::zeros()
-            }
-        })
-        .collect();
-    sim.set_velocities(&v).unwrap();
+    let down = strip_only(sim.positions().len(), first_strip, Vec3::new(0.0, 0.0, -1.0));
+    sim.set_velocities(&down).unwrap();
     let mut impacts = 0;
     for _ in 0..15 {
         let stats = sim.step().unwrap();
@@ -114,32 +104,15 @@ fn pieces_moved_apart_collide_from_the_next_step_on() {
     let (mesh, first_strip) = crossed(0.035);
     let mut sim = simulation(mesh, Vec3::zeros(), first_strip);
     assert_eq!(sim.tangles()[0].released, None);
-    let lifted: Vec<Vec3> = sim
-        .positions()
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            if i >= first_strip {
-                p + Vec3::new(0.0, 0.0, 0.04)
-            } else {
-                *p
-            }
-        })
-        .collect();
+    let n = sim.positions().len();
+    let lift = strip_only(n, first_strip, Vec3::new(0.0, 0.0, 0.04));
+    let lifted: Vec<Vec3> = sim.positions().iter().zip(&lift).map(|(p, by)| p + by).collect();
     sim.set_positions(&lifted).unwrap();
     assert_eq!(sim.self_intersections().count, 0);
     assert_eq!(sim.tangles()[0].released, Some(0));
     // Thrown down through the sheet from there, it lands on it.
-    let v: Vec<Vec3> = (0..lifted.len())
-        .map(|i| {
-            if i >= first_strip {
-                Vec3::new(0.0, 0.0, -1.0)
-            } else {
-                Vec3::zeros()
-            }
-        })
-        .collect();
-    sim.set_velocities(&v).unwrap();
+    sim.set_velocities(&strip_only(n, first_strip, Vec3::new(0.0, 0.0, -1.0)))
+        .unwrap();
     for _ in 0..15 {
         let stats = sim.step().unwrap();
         assert_eq!(sim.self_intersections().count, 0, "step {}", stats.step);
