@@ -35,7 +35,7 @@ pub use mesh::{components, within_rings, ClothMesh, GridBuilder, GridDiagonals, 
 pub use metrics::{GridStretch, StrainReport};
 pub use self_contact::{
     closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections, LayerPass,
-    LayerPassing, SelfCollision, Tangle,
+    LayerPassing, SelfCollision, SelfCrossings, Tangle,
 };
 pub use solver::{
     Constraint, ConstraintKind, Integrator, Interrupt, PcgSettings, Pin, PinMotion, RestCriteria,

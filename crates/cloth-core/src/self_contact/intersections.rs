@@ -226,7 +226,25 @@ pub fn self_intersecting_pairs(
     rest_radius: f64,
     x: &[Vec3],
 ) -> Vec<(usize, usize)> {
-    crossing_pairs(&Topology::new(mesh, seams, rest_radius), x)
+    SelfCrossings::new(mesh, seams, rest_radius).pairs(x)
+}
+
+/// Which pairs of a mesh are exempt, made once, to find its crossings at one position
+/// after another (a repair that moves the cloth round after round) without making them
+/// again each time.
+#[derive(Debug, Clone)]
+pub struct SelfCrossings(Topology);
+
+impl SelfCrossings {
+    /// The exemptions of [`self_intersecting_pairs`] for `mesh`.
+    pub fn new(mesh: &ClothMesh, seams: &[[usize; 2]], rest_radius: f64) -> Self {
+        Self(Topology::new(mesh, seams, rest_radius))
+    }
+
+    /// The intersecting (edge, triangle) pairs at `x`, sorted.
+    pub fn pairs(&self, x: &[Vec3]) -> Vec<(usize, usize)> {
+        crossing_pairs(&self.0, x)
+    }
 }
 
 /// The smallest distance of a particle from a triangle of the cloth, pairs sharing a

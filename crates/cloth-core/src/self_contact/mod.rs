@@ -36,7 +36,7 @@ mod topology;
 mod untangling;
 
 pub use intersections::{
-    closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections,
+    closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections, SelfCrossings,
 };
 
 /// Two pieces of the cloth (charts: panels, for a garment) that passed through each other

@@ -10,7 +10,7 @@
 //! shoulder's sides, moved out, drags its neighbours through.
 
 use crate::garment::Welded;
-use cloth_core::{components, self_intersecting_pairs, ClothMesh, Neighbours, Vec3};
+use cloth_core::{components, ClothMesh, Neighbours, SelfCrossings, Vec3};
 
 /// The most particles a region cut off may have: a corner or a flap, not a panel.
 const MOST_PARTICLES: usize = 400;
@@ -146,16 +146,16 @@ pub(super) fn move_through(mesh: &ClothMesh, x: &[Vec3], region: &Region, most: 
 
 /// Moves the regions of `welded` that its crossings `pairs` cut off from their panels
 /// (`charts`, see [`regions`]) through what they cross, each only if that leaves fewer
-/// crossings (exempt as for [`self_intersecting_pairs`] with `rest_radius`), none farther
-/// than `most` (m). Returns how many were moved, and the crossings left.
+/// crossings (as `crossings`, made for `welded`'s mesh, finds them), none farther than
+/// `most` (m). Returns how many were moved, and the crossings left.
 pub(super) fn clear(
     welded: &mut Welded,
     charts: &Neighbours,
     mut pairs: Vec<(usize, usize)>,
-    rest_radius: f64,
+    crossings: &SelfCrossings,
     most: f64,
 ) -> (usize, Vec<(usize, usize)>) {
-    let crossings = |mesh: &ClothMesh| self_intersecting_pairs(mesh, &[], rest_radius, mesh.positions());
+    let crossings = |mesh: &ClothMesh| crossings.pairs(mesh.positions());
     let mut moved = 0;
     for _ in 0..ROUNDS {
         if pairs.is_empty() {
@@ -187,6 +187,7 @@ pub(super) fn clear(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use cloth_core::self_intersecting_pairs;
     use nalgebra::Vector2;
 
     /// A square sheet of `k` by `k` cells of 1 cm at height 0, and a strip of 1 by 6
@@ -262,7 +263,8 @@ mod tests {
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].particles, vec![first, first + 1]);
         // Moved up through the sheet as one, to just above it, and nothing crosses.
-        let (moved, left) = clear(&mut welded, &charts, pairs, 0.0, 0.02);
+        let crossings = SelfCrossings::new(&welded.mesh, &[], 0.0);
+        let (moved, left) = clear(&mut welded, &charts, pairs, &crossings, 0.02);
         assert_eq!(moved, 1);
         assert!(left.is_empty());
         let x = welded.mesh.positions();
@@ -288,7 +290,8 @@ mod tests {
         let found = regions(&welded, &charts, &pairs);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].particles.len(), 6);
-        let (moved, left) = clear(&mut welded, &charts, pairs.clone(), 0.0, 0.02);
+        let crossings = SelfCrossings::new(&welded.mesh, &[], 0.0);
+        let (moved, left) = clear(&mut welded, &charts, pairs.clone(), &crossings, 0.02);
         assert_eq!(moved, 0);
         assert_eq!(left, pairs);
         assert_eq!(welded.mesh.positions(), &x0[..]);

@@ -19,7 +19,7 @@
 //! layer, ends on the layer. The drape then goes on from there, its collision holding
 //! apart what no longer crosses.
 
-use cloth_core::{self_intersecting_pairs, ClothMesh, Collider, Neighbours, Proximity, Vec3};
+use cloth_core::{ClothMesh, Collider, Neighbours, Proximity, SelfCrossings, Vec3};
 
 /// What smoothing the cloth apart did.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -57,7 +57,8 @@ pub(super) fn smooth_apart(
     fixed: impl Fn(usize) -> bool,
     keep_out: impl Fn(usize, &Vec3, Vec3) -> Vec3,
 ) -> Smoothing {
-    let crossings = |x: &[Vec3]| self_intersecting_pairs(mesh, seams, rest_radius, x);
+    let crossings = SelfCrossings::new(mesh, seams, rest_radius);
+    let crossings = |x: &[Vec3]| crossings.pairs(x);
     let mut pairs = crossings(x);
     let start = x.to_vec();
     let mut report = Smoothing {
@@ -131,7 +132,7 @@ pub(super) fn kept_out(
 mod tests {
     use super::*;
     use cloth_collide::{Bodies, Body, TriSurface};
-    use cloth_core::GridBuilder;
+    use cloth_core::{self_intersecting_pairs, GridBuilder};
 
     /// A sheet of `n` by `n` cells of 1 cm folded back over itself 1 cm apart (the fold
     /// along its middle row), with one particle of the upper layer pushed `depth` down:

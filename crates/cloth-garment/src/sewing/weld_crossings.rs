@@ -10,7 +10,7 @@
 
 use super::cut_off;
 use crate::garment::Welded;
-use cloth_core::{self_intersecting_pairs, Collider, Neighbours, Proximity, Vec3};
+use cloth_core::{Collider, Neighbours, Proximity, SelfCrossings, Vec3};
 
 /// What clearing the weld's crossings found and left (intersecting edge-triangle pairs),
 /// and how many parts of the cloth cut off by them were moved through as one (see
@@ -52,12 +52,13 @@ pub(super) fn clear(
     }
     let free = |i: usize| members[i] <= 1;
     let rounds = (most / STEP).ceil() as usize;
-    let found = self_intersecting_pairs(&welded.mesh, &[], rest_radius, welded.mesh.positions());
+    let crossings = SelfCrossings::new(&welded.mesh, &[], rest_radius);
+    let found = crossings.pairs(welded.mesh.positions());
     let mut report = WeldCrossings {
         found: found.len(),
         ..WeldCrossings::default()
     };
-    let (regions_moved, mut pairs) = cut_off::clear(welded, charts, found, rest_radius, most);
+    let (regions_moved, mut pairs) = cut_off::clear(welded, charts, found, &crossings, most);
     report.regions_moved = regions_moved;
     let mut moved = vec![false; n];
     // The fewest crossings yet, and where: moving cloth out may cross other cloth.
@@ -65,7 +66,7 @@ pub(super) fn clear(
     for round in 0..=rounds {
         let x = welded.mesh.positions().to_vec();
         if round > 0 {
-            pairs = self_intersecting_pairs(&welded.mesh, &[], rest_radius, &x);
+            pairs = crossings.pairs(&x);
         }
         if best.as_ref().is_none_or(|(count, _)| pairs.len() < *count) {
             best = Some((pairs.len(), x.clone()));
