@@ -340,11 +340,13 @@ class Draped:
     @property
     def untangling_at_rest(self) -> dict[str, Any] | None:
         """If the drape came to rest through itself, what was done: ``before`` (the
-        crossings where it first rested); ``smoothed``, the cloth smoothed apart there
-        (``before``, ``left``, ``rounds``, ``most_moved`` in m) and ``draped_on`` from there
-        (``after``, ``steps``, ``kept``; None if the smoothing left no fewer); ``loose``,
-        if it still crossed, the garment draped again from sewn, loose where it crossed
-        (``after``, ``steps``, ``kept``), or None; else None."""
+        crossings where it first rested); ``smoothed``, a list, each time the cloth was
+        smoothed apart where it rested (``before``, ``left``, ``rounds``, ``most_moved``
+        in m) and ``draped_on`` from there (``after``, ``body_after``, ``steps``,
+        ``kept``; None if the smoothing left no fewer), again after each drape on kept
+        that still crossed, at most three times; ``loose``, if it still crossed, the
+        garment draped again from sewn, loose where it crossed (``after``,
+        ``body_after``, ``steps``, ``kept``), or None; else None."""
 
 @final
 class StepStats:

@@ -88,26 +88,29 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             c.found, c.left
         )?;
     }
-    if let Some(u) = report.untangling_at_rest {
-        let s = u.smoothed.smoothing;
-        let on = match u.smoothed.draped_on {
-            Some(d) => format!(
-                "{} ({} through the body) in {} steps draped on, {} kept",
-                d.after,
-                d.body_after,
-                d.steps,
-                if d.kept { "that" } else { "the first" }
-            ),
-            None => "not draped on".to_string(),
-        };
-        writeln!(
-            out,
-            "| at rest through itself, smoothed apart where it crossed: crossings first / after smoothing ({} rounds, {:.1} mm at most) / at rest after | {} / {} / {on} |",
-            s.rounds,
-            1e3 * s.most_moved,
-            u.before,
-            s.left
-        )?;
+    if let Some(u) = &report.untangling_at_rest {
+        for (k, smoothed) in u.smoothed.iter().enumerate() {
+            let s = smoothed.smoothing;
+            let on = match smoothed.draped_on {
+                Some(d) => format!(
+                    "{} ({} through the body) in {} steps draped on, {} kept",
+                    d.after,
+                    d.body_after,
+                    d.steps,
+                    if d.kept { "that" } else { "the rest before" }
+                ),
+                None => "not draped on".to_string(),
+            };
+            let again = if k == 0 { "" } else { " again" };
+            writeln!(
+                out,
+                "| at rest through itself, smoothed apart{again} where it crossed: crossings first / after smoothing ({} rounds, {:.1} mm at most) / at rest after | {} / {} / {on} |",
+                s.rounds,
+                1e3 * s.most_moved,
+                s.before,
+                s.left
+            )?;
+        }
         if let Some(d) = u.loose {
             let kept = if d.kept { "this one" } else { "the one before" };
             writeln!(

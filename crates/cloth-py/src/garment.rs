@@ -301,7 +301,7 @@ pub struct Draped {
     pub seconds: f64,
     /// If the drape came to rest through itself, what was done, as a dict as a scene's
     /// report.json gives it (`before`: the crossings where it first rested; `smoothed`:
-    /// the smoothing apart there and the drape on from there; `loose`: the drape again
+    /// each smoothing apart and the drape on from there, in order; `loose`: the drape again
     /// from sewn, loose, if it still crossed); None otherwise.
     pub untangling_at_rest: Py<PyAny>,
 }

@@ -12,7 +12,7 @@ mod zip;
 pub use caught::CaughtLayer;
 pub use settings::{DrapeSettings, SewingSettings};
 pub use smoothing_apart::Smoothing;
-pub use untangling_at_rest::{Crossed, DrapedAgain, SmoothedOn, UntanglingAtRest};
+pub use untangling_at_rest::{Crossed, DrapedAgain, SmoothedOn, UntanglingAtRest, SMOOTHINGS};
 pub use weld_crossings::WeldCrossings;
 
 use crate::garment::{Garment, GarmentError, HeldOpen, Ring, Welded};
@@ -22,10 +22,11 @@ use cloth_core::{
     Attachment, Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError,
     Simulation,
 };
-use cloth_core::{SelfCollision, SimulationBuilder, SolverSettings, StepStats, Vec3};
+use cloth_core::{RestCriteria, SelfCollision, SimulationBuilder, SolverSettings, StepStats, Vec3};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
+use untangling_at_rest::{smooth_and_drape_on, AtRest};
 use zip::AtStrongest;
 
 /// What the sewing stage did.
@@ -729,9 +730,9 @@ pub fn drape_simulation(
 }
 
 /// Drapes the sewn garment until at rest (the source's stopping mechanism) or the step
-/// limit; at rest through itself, it is smoothed apart where it crosses and draped on,
-/// and if it still crosses, draped again, loose where it crosses, and the drape crossing
-/// least kept (see `untangling_at_rest`).
+/// limit; at rest through itself, it is smoothed apart where it crosses and draped on
+/// (again while that is kept and still crosses), and if it still crosses, draped again,
+/// loose where it crosses, and the drape crossing least kept (see `untangling_at_rest`).
 /// `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]), as may
 /// `interrupt` inside a step.
 pub fn drape(
@@ -757,47 +758,28 @@ pub fn drape(
     };
     let mut outcome = simulation.run_to_rest_with(&rest, &mut watch).map_err(failed)?;
     let mut untangling = None;
-    let crossed = |sim: &Simulation| Crossed {
-        cloth: sim.self_intersections().count,
-        body: sim.body_intersections(),
-    };
     let first_crossed = crossed(&simulation);
     let before = first_crossed.cloth;
     if outcome.reason == cloth_core::StopReason::AtRest && before > 0 {
-        // Through itself at rest: smoothed apart there and draped on; if it still
-        // crosses, draped again from where it was sewn, loose where it crosses (see
-        // `untangling_at_rest`). A drape after the first that fails loses nothing: the
-        // rest before it stands.
-        let first = (simulation.positions().to_vec(), simulation.velocities().to_vec());
-        let (smoothing, smoothed) = smoothed_apart(&simulation, collider.as_ref());
-        let mut best = first_crossed;
-        let mut draped_on = None;
-        if smoothing.left < before {
-            let on = simulation
-                .set_positions(&smoothed)
-                .and_then(|()| simulation.set_velocities(&vec![Vec3::zeros(); smoothed.len()]))
-                .map_err(SimError::from)
-                .and_then(|()| simulation.run_to_rest_with(&rest, &mut watch));
-            let after = crossed(&simulation);
-            let report = on.as_ref().ok().map(|on| DrapedAgain::new(best, after, on));
-            match (on, report) {
-                (Ok(on), Some(report)) if report.kept => {
-                    outcome = RestOutcome {
-                        steps: outcome.steps + on.steps,
-                        ..on
-                    };
-                    best = after;
-                }
-                _ => {
-                    // Back to where the first drape rested.
-                    let back = simulation
-                        .set_positions(&first.0)
-                        .and_then(|()| simulation.set_velocities(&first.1));
-                    back.map_err(|e| failed(e.into()))?;
-                }
-            }
-            draped_on = report;
+        // Through itself at rest: smoothed apart there and draped on, again while the
+        // drape on is kept and still crosses; if it still crosses, draped again from where
+        // it was sewn, loose where it crosses (see `untangling_at_rest`). A drape after
+        // the first that fails loses nothing: the rest kept before it stands.
+        let mut draping = Draping {
+            simulation: &mut simulation,
+            bodies: collider.as_ref(),
+            rest: &rest,
+            watch: &mut watch,
+        };
+        let done = smooth_and_drape_on(&mut draping, first_crossed).map_err(failed)?;
+        if let Some(last) = done.last {
+            outcome = RestOutcome {
+                steps: outcome.steps + done.steps,
+                ..last
+            };
         }
+        let best = done.crossed;
+        let smoothed = done.smoothed;
         let mut loose = None;
         if best.cloth > 0 {
             let mut again = drape_simulation(sewn, collider, settings.solver(), settings.drag)?;
@@ -817,7 +799,7 @@ pub fn drape(
         }
         untangling = Some(UntanglingAtRest {
             before,
-            smoothed: SmoothedOn { smoothing, draped_on },
+            smoothed,
             loose,
         });
     }
@@ -828,6 +810,55 @@ pub fn drape(
         cg_iterations: cg,
         untangling,
     })
+}
+
+/// How `simulation`'s cloth crosses itself and the bodies.
+fn crossed(simulation: &Simulation) -> Crossed {
+    Crossed {
+        cloth: simulation.self_intersections().count,
+        body: simulation.body_intersections(),
+    }
+}
+
+/// The drape's simulation at rest through itself, smoothed apart and draped on to the
+/// drape's rest, every step watched.
+struct Draping<'a, W> {
+    simulation: &'a mut Simulation,
+    bodies: &'a dyn Collider,
+    rest: &'a RestCriteria,
+    watch: &'a mut W,
+}
+
+impl<W: FnMut(&Simulation, &StepStats) -> ControlFlow<()>> AtRest for Draping<'_, W> {
+    type Error = SimError;
+
+    fn smoothed(&self) -> (Smoothing, Vec<Vec3>) {
+        smoothed_apart(self.simulation, self.bodies)
+    }
+
+    fn drape_on(&mut self, x: &[Vec3]) -> (Result<RestOutcome, SimError>, Crossed) {
+        let sim = &mut *self.simulation;
+        let on = sim
+            .set_positions(x)
+            .and_then(|()| sim.set_velocities(&vec![Vec3::zeros(); x.len()]))
+            .map_err(SimError::from)
+            .and_then(|()| sim.run_to_rest_with(self.rest, &mut *self.watch));
+        (on, crossed(sim))
+    }
+
+    fn state(&self) -> (Vec<Vec3>, Vec<Vec3>) {
+        (
+            self.simulation.positions().to_vec(),
+            self.simulation.velocities().to_vec(),
+        )
+    }
+
+    fn set_state(&mut self, state: &(Vec<Vec3>, Vec<Vec3>)) -> Result<(), SimError> {
+        let sim = &mut *self.simulation;
+        sim.set_positions(&state.0)
+            .and_then(|()| sim.set_velocities(&state.1))
+            .map_err(SimError::from)
+    }
 }
 
 /// The positions of `simulation`'s cloth smoothed apart where it passes through itself
