@@ -774,7 +774,7 @@ pub fn drape(
         let done = smooth_and_drape_on(&mut draping, first_crossed).map_err(failed)?;
         if let Some(last) = done.last {
             outcome = RestOutcome {
-                steps: outcome.steps + done.steps,
+                steps: outcome.steps + done.steps(),
                 ..last
             };
         }
