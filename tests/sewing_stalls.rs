@@ -205,3 +205,90 @@ fn a_tube_half_the_posts_girth_fails_saying_the_post_lies_between_its_sides() {
         other => panic!("{:?}", other.map(|s| s.report)),
     }
 }
+
+/// Two flat panels 10 cm tall, 7 cm in front of and behind a post of 4 cm radius, from
+/// 20 cm left of its axis to 8 cm right of it: their hems sewn to each other (the post
+/// between the sides of the hem's middle pairs, not its end pairs) and their left sides
+/// too, as GarmentCode's flounce beside one leg reaches past the other.
+fn flap_past_a_post() -> Result<Sewn, GarmentError> {
+    // The back panel is turned half round about the vertical, so its outline runs from
+    // the world's right to its left: it spans -8 to 20 cm in its own frame.
+    let panel = |name: &str, turn: f64, y: f64, from: f64, to: f64| {
+        format!(
+            r#"
+[[panels]]
+name = "{name}"
+outline = [
+    {{ start = [{from}, 0], name = "hem" }},
+    {{ start = [{to}, 0], name = "right" }},
+    {{ start = [{to}, 10], name = "top" }},
+    {{ start = [{from}, 10], name = "left" }},
+]
+placement = {{ rotation = [90, 0, {turn}], translation = [0, {y}, -5] }}
+"#
+        )
+    };
+    let text = format!(
+        "units = \"cm\"\n{}{}\n\
+         [[seams]]\na = {{ panel = \"front\", edge = \"hem\" }}\nb = {{ panel = \"back\", edge = \"hem\" }}\n\n\
+         [[seams]]\na = {{ panel = \"front\", edge = \"left\" }}\nb = {{ panel = \"back\", edge = \"right\" }}\n",
+        panel("front", 0.0, -7.0, -20.0, 8.0),
+        panel("back", 180.0, 7.0, -8.0, 20.0),
+    );
+    let pattern = Pattern::from_toml_str(&text, "flap.toml").unwrap();
+    let post = Body::new("post", TriSurface::cylinder(0.04, 0.15, 64).unwrap());
+    let bodies = Arc::new(Bodies::new(vec![post]));
+    let garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
+    let fabric = FabricLibrary::builtin().fabric("cotton_poplin").unwrap();
+    sew(
+        &garment,
+        &[fabric.clone(), fabric],
+        bodies,
+        &SewingSettings::default(),
+        &Interrupt::default(),
+        |_, _, _| ControlFlow::Continue(()),
+    )
+}
+
+#[test]
+fn a_seam_placed_across_a_post_between_clear_ends_is_sewn_again_from_its_joined_end_beside_it() {
+    // Pulled straight, the hem closes on both sides of the post and stalls with the post
+    // between its sides. They were not clear of it as placed, but the hem's ends were,
+    // and its left end is joined to the left side's seam: the sewing starts over with the
+    // left side drawn shut first and the hem pulled from there a pair at a time, and it
+    // closes beside the post, the panels drawn off it to the left.
+    let sewn = flap_past_a_post().unwrap();
+    let stalls = &sewn.report.stalls;
+    let hem = "panel 'front', edge 'hem' (0) to panel 'back', edge 'hem' (0)";
+    let over: Vec<_> = stalls
+        .iter()
+        .filter(|s| s.then == StallThen::StartedOver)
+        .collect();
+    assert_eq!(over.len(), 1, "{stalls:?}");
+    assert_eq!(over[0].seam, hem);
+    assert!(over[0].gap > 0.04, "{:?}", over[0]);
+    // The hem alone is pulled from its end, from where it was placed, 14 cm open.
+    let from_end: Vec<_> = stalls
+        .iter()
+        .filter(|s| s.then == StallThen::FromClearEnd)
+        .collect();
+    assert_eq!(from_end.len(), 1, "{stalls:?}");
+    assert_eq!(from_end[0].seam, hem);
+    assert!((from_end[0].gap - 0.14).abs() < 1e-6, "{:?}", from_end[0]);
+    assert_eq!(from_end[0].step, over[0].step);
+    assert!(
+        sewn.report.max_gap <= FORCED_WELD * 0.02,
+        "{}",
+        sewn.report.max_gap
+    );
+    // Beside the post, not round it: all the cloth left of its axis (placed, it reached
+    // 8 cm right of it), none in it.
+    let x = sewn.welded.mesh.positions();
+    let right = x.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
+    assert!(right < 0.0, "cloth {right} m right of the post's axis");
+    let inside = x
+        .iter()
+        .filter(|p| p.x.hypot(p.y) < 0.04 && p.z.abs() < 0.15)
+        .count();
+    assert_eq!(inside, 0);
+}

@@ -151,9 +151,13 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
                     s.pull_factor
                 ),
                 StallThen::StartedOver => format!(
-                    "the body between its own sides, clear of them as placed: sewn again from the placed panels with every seam clear as placed drawn shut first and held shut (pull at {} times full)",
+                    "the body between its own sides: sewn again from the placed panels with every seam clear as placed drawn shut first and held shut (pull at {} times full)",
                     s.pull_factor
                 ),
+                StallThen::FromClearEnd => {
+                    "the body across its sides as placed: pulled shut from its clear end joined to another seam, a pair at a time, each once the one before had closed (gap as placed)"
+                        .to_string()
+                }
             };
             writeln!(out, "| {} | {} | {:.2} | {then} |", s.step, s.seam, 1e3 * s.gap)?;
         }

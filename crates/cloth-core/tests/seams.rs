@@ -87,8 +87,9 @@ fn per_corner_material_coordinates_give_the_rest_state() {
     assert_eq!(c.bending_calibration(), d.bending_calibration());
 }
 
-#[test]
-fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
+/// Two strips 4 x 10 cm side by side, 6 cm apart, and the pairs that sew the left one's
+/// right column to the right one's left column.
+fn two_strips() -> (ClothMesh, Vec<[usize; 2]>) {
     let strip = |x0: f64| {
         GridBuilder::new(3, 6)
             .size(0.04, 0.1)
@@ -105,8 +106,21 @@ fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
     let mut triangles = left.triangles().to_vec();
     triangles.extend(right.triangles().iter().map(|t| t.map(|i| i + n)));
     let mesh = ClothMesh::new(positions, uv, triangles).unwrap();
-    // The left strip's right column to the right strip's left column.
     let pairs: Vec<[usize; 2]> = (0..6).map(|j| [j * 3 + 2, n + j * 3]).collect();
+    (mesh, pairs)
+}
+
+/// The widest gap of `pairs` in `sim`, m.
+fn widest(sim: &cloth_core::Simulation, pairs: &[[usize; 2]]) -> f64 {
+    pairs
+        .iter()
+        .map(|&[a, b]| (sim.positions()[a] - sim.positions()[b]).norm())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
+    let (mesh, pairs) = two_strips();
     let fabric = Fabric::cotton_like().with_damping(0.01);
     let settings = cloth_core::SolverSettings {
         gravity: Vec3::zeros(),
@@ -117,12 +131,7 @@ fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
         .seams(pairs.clone())
         .build()
         .unwrap();
-    let gap = |sim: &cloth_core::Simulation| {
-        pairs
-            .iter()
-            .map(|&[a, b]| (sim.positions()[a] - sim.positions()[b]).norm())
-            .fold(0.0, f64::max)
-    };
+    let gap = |sim: &cloth_core::Simulation| widest(sim, &pairs);
     // Without a pull nothing moves.
     sim.step().unwrap();
     assert!((gap(&sim) - 0.06).abs() < 1e-12);
@@ -146,4 +155,66 @@ fn seam_forces_close_a_gap_and_bad_pairs_are_refused() {
         .is_err());
     let bad = SimulationBuilder::new(mesh, fabric).seams(vec![[0, 0]]).build();
     assert!(bad.unwrap_err().to_string().contains("seams"));
+}
+
+#[test]
+fn a_seam_pair_weighed_zero_is_not_pulled_until_weighed_again() {
+    let (mesh, pairs) = two_strips();
+    let settings = cloth_core::SolverSettings {
+        gravity: Vec3::zeros(),
+        ..Default::default()
+    };
+    let sim = || {
+        let mut sim = SimulationBuilder::new(mesh.clone(), Fabric::cotton_like().with_damping(0.01))
+            .settings(settings.clone())
+            .seams(pairs.clone())
+            .build()
+            .unwrap();
+        sim.set_seam_pull(SeamPull {
+            stiffness: 0.05,
+            reach: 0.01,
+            damping: 0.0,
+        })
+        .unwrap();
+        sim
+    };
+    let gap = |sim: &cloth_core::Simulation, k: usize| widest(sim, &pairs[k..=k]);
+    // Every pair weighed zero: pulled, nothing moves.
+    let mut none = sim();
+    none.set_seam_weights(&[0.0; 6]).unwrap();
+    for _ in 0..20 {
+        none.step().unwrap();
+    }
+    assert!((widest(&none, &pairs) - 0.06).abs() < 1e-12);
+    // Only the bottom pair pulled, the strips close at the bottom first; only the top
+    // one, at the top: the weights go to the pairs in the order they were given.
+    for (pulled, other) in [(0, 5), (5, 0)] {
+        let mut one = sim();
+        let mut weights = [0.0; 6];
+        weights[pulled] = 1.0;
+        one.set_seam_weights(&weights).unwrap();
+        for _ in 0..40 {
+            one.step().unwrap();
+        }
+        let (near, far) = (gap(&one, pulled), gap(&one, other));
+        assert!(
+            near < 0.06 - 1e-3 && near < 0.9 * far,
+            "pulled {near} m, other {far} m"
+        );
+    }
+    // Weighed again, every pair closes.
+    none.set_seam_weights(&[1.0; 6]).unwrap();
+    for _ in 0..600 {
+        none.step().unwrap();
+    }
+    assert!(widest(&none, &pairs) < 1e-3, "{} m apart", widest(&none, &pairs));
+    // One weight per pair, finite and not negative.
+    for bad in [
+        vec![1.0; 5],
+        vec![1.0, 1.0, 1.0, 1.0, 1.0, -1.0],
+        vec![f64::NAN; 6],
+    ] {
+        let error = none.set_seam_weights(&bad).unwrap_err();
+        assert!(error.to_string().contains("seam_weights"), "{error}");
+    }
 }

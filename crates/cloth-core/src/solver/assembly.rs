@@ -49,6 +49,9 @@ struct HingeElement {
 #[derive(Debug, Clone)]
 struct SeamElement {
     v: [u32; 2],
+    /// The pair's place in the seams given to [`ForceModel::new`] (the elements are
+    /// reordered by colour).
+    pair: u32,
     weight: f64,
     slots: [u32; 4],
 }
@@ -208,8 +211,10 @@ impl ForceModel {
         let seams: Vec<SeamElement> = seams
             .iter()
             .zip(seam_weights)
-            .map(|(v, &weight)| SeamElement {
+            .enumerate()
+            .map(|(pair, (v, &weight))| SeamElement {
                 v: v.map(|i| i as u32),
+                pair: pair as u32,
                 weight,
                 slots: slots(v).try_into().expect("4 slots"),
             })
@@ -284,6 +289,13 @@ impl ForceModel {
     }
     pub fn seam_pull(&self) -> SeamPull {
         self.seam_pull
+    }
+    /// Weighs each seam pair's pull by `weights`, in the order the seams were given (as
+    /// the builder checked: one finite weight >= 0 per pair).
+    pub fn set_seam_weights(&mut self, weights: &[f64]) {
+        for e in &mut self.seams {
+            e.weight = weights[e.pair as usize];
+        }
     }
     /// Stiffness of the penalties holding the cloth (attachments, a body's sharp
     /// features), N/m: ten times the stiffest fabric's membrane.

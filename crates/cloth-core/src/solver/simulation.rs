@@ -218,19 +218,7 @@ impl SimulationBuilder {
         )?;
         check_attachments(&self.attachments, n)?;
         let seam_weights = self.seam_weights.unwrap_or_else(|| vec![1.0; self.seams.len()]);
-        ParamError::check(
-            seam_weights.len() == self.seams.len(),
-            "seam_weights",
-            seam_weights.len() as f64,
-            "one weight per seam pair",
-        )?;
-        if let Some(&w) = seam_weights.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
-            return Err(ParamError::OutOfRange {
-                name: "seam_weights",
-                value: w,
-                expected: "finite weights >= 0",
-            });
-        }
+        check_seam_weights(&seam_weights, self.seams.len())?;
         if let Some(kappa) = &self.bending_calibration {
             ParamError::check(
                 kappa.len() == self.fabrics.len(),
@@ -472,6 +460,15 @@ impl Simulation {
     }
     pub fn seam_pull(&self) -> SeamPull {
         self.model.seam_pull()
+    }
+
+    /// Weighs each seam pair's pull from the next step on, in place of the weights given
+    /// before (to the builder or here): one finite weight >= 0 per pair given to
+    /// [`SimulationBuilder::seams`], in its order; zero leaves a pair unpulled.
+    pub fn set_seam_weights(&mut self, weights: &[f64]) -> Result<(), ParamError> {
+        check_seam_weights(weights, self.seams.len())?;
+        self.model.set_seam_weights(weights);
+        Ok(())
     }
     /// Changes the integrator or its settings between steps.
     pub fn set_settings(&mut self, settings: SolverSettings) -> Result<(), ParamError> {
@@ -1274,6 +1271,24 @@ fn kinetic_energy(masses: &[f64], v: &[Vec3]) -> f64 {
         .zip(v)
         .map(|(m, vi)| m * vi.norm_squared())
         .sum::<f64>()
+}
+
+/// One finite weight >= 0 for each of `pairs` seam pairs.
+fn check_seam_weights(weights: &[f64], pairs: usize) -> Result<(), ParamError> {
+    ParamError::check(
+        weights.len() == pairs,
+        "seam_weights",
+        weights.len() as f64,
+        "one weight per seam pair",
+    )?;
+    match weights.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
+        Some(&w) => Err(ParamError::OutOfRange {
+            name: "seam_weights",
+            value: w,
+            expected: "finite weights >= 0",
+        }),
+        None => Ok(()),
+    }
 }
 
 /// Attachments on particles of a cloth of `n`, with finite points and unit directions.

@@ -3,6 +3,7 @@
 
 mod caught;
 mod cut_off;
+mod from_clear_end;
 mod settings;
 mod smoothing_apart;
 mod untangling_at_rest;
@@ -23,6 +24,7 @@ use cloth_core::{
     Simulation,
 };
 use cloth_core::{RestCriteria, SelfCollision, SimulationBuilder, SolverSettings, StepStats, Vec3};
+use from_clear_end::FromClearEnds;
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
@@ -81,10 +83,15 @@ pub enum StallThen {
     /// drawn together over a stall's window of steps and welded (see `zip`).
     Zipped,
     /// With the pull at its strongest and the body between the named seam's own sides,
-    /// which were clear of it where the panels were placed, the sewing started over from
-    /// the placed panels with every seam clear as placed drawn shut first and held shut
-    /// (see [`sew`]).
+    /// the sewing started over from the placed panels with every seam clear as placed
+    /// drawn shut first and held shut (see [`sew`]), and those the body lay across as
+    /// placed between clear ends pulled from one ([`StallThen::FromClearEnd`]).
     StartedOver,
+    /// As the sewing started over, the named seam (its widest gap as placed), which the
+    /// body lay across where the panels were placed but not at its ends, was pulled shut
+    /// from a clear end that joins it to another seam, a pair at a time, each once its
+    /// neighbour had closed (see `from_clear_end`).
+    FromClearEnd,
 }
 
 /// Where the sewing stands after a step, for its observer.
@@ -130,8 +137,11 @@ pub struct Sewn {
 /// panels were placed, was drawn round the body by the seams that closed before it: the
 /// sewing starts over from the placed panels, once, with every seam that was clear as
 /// placed drawn shut first and held shut from then on, as GarmentCode's own simulator
-/// joins every seam before its first step; the others are pulled as before (the steps of
-/// both attempts are counted, and `observe` sees them all).
+/// joins every seam before its first step; the others are pulled as before, but those the
+/// body lay across as placed between clear ends are pulled from an end joined to another
+/// seam, a pair at a time (see `from_clear_end`). A held seam that was not clear as placed
+/// starts over too if it is pulled so (the steps of both attempts are counted, and
+/// `observe` sees them all).
 pub fn sew(
     garment: &Garment,
     panel_fabrics: &[Fabric],
@@ -270,7 +280,7 @@ where
     // spacing of the pairs.
     let shares = garment.seam_shares();
     let spacing = shares.iter().sum::<f64>() / shares.len().max(1) as f64;
-    let seam_weights = shares
+    let seam_weights: Vec<f64> = shares
         .iter()
         .map(|s| if spacing > 0.0 { s / spacing } else { 1.0 })
         .collect();
@@ -303,7 +313,7 @@ where
         .fabrics(sewing_fabrics, triangle_fabric.clone())
         .settings(solver)
         .seams(garment.seam_pairs())
-        .seam_weights(seam_weights)
+        .seam_weights(seam_weights.clone())
         .touching(garment.touching.clone())
         .attachments([attachments.clone(), height_holds(garment, settings.height_slack)].concat())
         .pass_through(sewing_passes(garment))
@@ -316,26 +326,39 @@ where
     // cloth beside them, and held shut: drawn in and let go, a seam was pulled open
     // again by those the pulls closed later (GarmentCode's rand_1_094 at 3 cm, not held
     // at its height, a sleeve's top seam round the arm, when only the held seam and those
-    // round it were drawn in).
+    // round it were drawn in). Seams the body lies across as placed between clear ends are
+    // pulled shut from an end joined to another seam, a pair at a time (see
+    // `from_clear_end`): the held seam too, its sides not clear as placed (GarmentCode's
+    // rand_1_035 on `mean_all`, a flounce whose inner seam reaches past the other leg).
     let mut draw_first = None;
+    let mut from_ends: Option<FromClearEnds> = None;
     if let Some(held) = attempt.held {
         let clear = |s: usize| {
             zip::held_open(garment, &sim, bodies.as_ref(), &garment.seams[s].pairs) == HeldOpen::Nothing
         };
-        if !clear(held) {
+        let x = sim.positions();
+        let pairs = garment.seam_pairs();
+        let ends = FromClearEnds::new(&garment.seams, seam_weights.clone(), |k| {
+            let [a, b] = pairs[k];
+            bodies.segment_crossings(sim.time(), &x[a], &x[b]) > 0
+        });
+        if !clear(held) && !ends.pulls(held) {
             return Ok(None);
         }
         let first: Vec<[usize; 2]> = (0..garment.seams.len())
-            .filter(|&s| s == held || clear(s))
+            .filter(|&s| clear(s))
             .flat_map(|s| garment.seams[s].pairs.iter().copied())
             .collect();
-        let x = sim.positions();
         let widest = first
             .iter()
             .map(|&[a, b]| (x[a] - x[b]).norm())
             .fold(0.0, f64::max);
         let steps = (widest / (0.5 * spacing)).ceil() as u64;
         draw_first = Some(zip::Zip::holding(first, x, steps.max(stall.window)));
+        if !ends.is_empty() {
+            sim.set_seam_weights(&ends.weights())?;
+            from_ends = Some(ends);
+        }
     }
     let pull = settings.pull_strain * softest * spacing;
     let mut cg = 0;
@@ -350,6 +373,17 @@ where
         pull_factor,
         then,
     };
+    if let Some(ends) = &from_ends {
+        let x = sim.positions();
+        for s in ends.seams() {
+            let gap = garment.seams[s]
+                .pairs
+                .iter()
+                .map(|&[a, b]| (x[a] - x[b]).norm())
+                .fold(0.0, f64::max);
+            stalls.push(stall_at(0, s, gap, pull_level.boost, StallThen::FromClearEnd));
+        }
+    }
     let mut catcher = Catcher::new(garment);
     // The step until which closed seams are sewn on while a layer found across them passes
     // (a stall's window after it was found), and how many times they were found closed
@@ -534,6 +568,13 @@ where
         steps += 1;
         cg += stats.cg_iterations;
         (seam, gap) = garment.widest_gap(sim.positions());
+        if let Some(ends) = from_ends.as_mut() {
+            // A pair handed the pull is progress: the window starts again.
+            if ends.advance(sim.positions(), spacing) {
+                sim.set_seam_weights(&ends.weights())?;
+                stall.restart();
+            }
+        }
         // A raised pull that tears the cloth without diverging goes back as one that
         // diverges does: GarmentCode's rand_1_022 was stretched to 470 % (p99) by pulls
         // of 64 and 256 times, and every step from there diverged, down to the pull's own.
@@ -1018,6 +1059,11 @@ impl Stall {
             window: (STALL_WINDOW / settings.time_step).ceil().max(1.0) as u64,
             since: None,
         }
+    }
+
+    /// Starts the window again at the next step watched.
+    fn restart(&mut self) {
+        self.since = None;
     }
 
     fn stalled(&mut self, gap: f64, step: u64) -> bool {
