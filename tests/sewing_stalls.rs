@@ -61,10 +61,12 @@ fn sew_tube(fit: f64) -> Result<Sewn, GarmentError> {
     let thickness = post.thickness();
     let bodies = Arc::new(Bodies::new(vec![post]));
     let girth = std::f64::consts::TAU * (RADIUS + thickness);
-    let garment = GarmentBuilder::new(tube(100.0 * fit * girth / 2.0))
-        .edge_length(0.02)
-        .build()
-        .unwrap();
+    sew_in_cotton(tube(100.0 * fit * girth / 2.0), bodies)
+}
+
+/// Sews `pattern`'s two panels of cotton poplin at 2 cm round `bodies`, unobserved.
+fn sew_in_cotton(pattern: Pattern, bodies: Arc<Bodies>) -> Result<Sewn, GarmentError> {
+    let garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
     let fabric = FabricLibrary::builtin().fabric("cotton_poplin").unwrap();
     sew(
         &garment,
@@ -237,17 +239,7 @@ placement = {{ rotation = [90, 0, {turn}], translation = [0, {y}, -5] }}
     );
     let pattern = Pattern::from_toml_str(&text, "flap.toml").unwrap();
     let post = Body::new("post", TriSurface::cylinder(0.04, 0.15, 64).unwrap());
-    let bodies = Arc::new(Bodies::new(vec![post]));
-    let garment = GarmentBuilder::new(pattern).edge_length(0.02).build().unwrap();
-    let fabric = FabricLibrary::builtin().fabric("cotton_poplin").unwrap();
-    sew(
-        &garment,
-        &[fabric.clone(), fabric],
-        bodies,
-        &SewingSettings::default(),
-        &Interrupt::default(),
-        |_, _, _| ControlFlow::Continue(()),
-    )
+    sew_in_cotton(pattern, Arc::new(Bodies::new(vec![post])))
 }
 
 #[test]

@@ -1,4 +1,4 @@
-//! Seams the body lies across where the panels were placed, pulled shut from an end.
+//! Seams the body lies across between clear ends as placed, pulled shut from one end.
 //!
 //! GarmentCode lays a flounce flat beside its leg, wider than the legs are apart, so the
 //! sides of its inner seam reach past the other leg (rand_1_035 on `mean_all`: the left
