@@ -252,18 +252,13 @@ fn a_seam_placed_across_a_post_between_clear_ends_is_sewn_again_from_its_joined_
     let sewn = flap_past_a_post().unwrap();
     let stalls = &sewn.report.stalls;
     let hem = "panel 'front', edge 'hem' (0) to panel 'back', edge 'hem' (0)";
-    let over: Vec<_> = stalls
-        .iter()
-        .filter(|s| s.then == StallThen::StartedOver)
-        .collect();
+    let then = |then: StallThen| -> Vec<_> { stalls.iter().filter(|s| s.then == then).collect() };
+    let over = then(StallThen::StartedOver);
     assert_eq!(over.len(), 1, "{stalls:?}");
     assert_eq!(over[0].seam, hem);
     assert!(over[0].gap > 0.04, "{:?}", over[0]);
     // The hem alone is pulled from its end, from where it was placed, 14 cm open.
-    let from_end: Vec<_> = stalls
-        .iter()
-        .filter(|s| s.then == StallThen::FromClearEnd)
-        .collect();
+    let from_end = then(StallThen::FromClearEnd);
     assert_eq!(from_end.len(), 1, "{stalls:?}");
     assert_eq!(from_end[0].seam, hem);
     assert!((from_end[0].gap - 0.14).abs() < 1e-6, "{:?}", from_end[0]);

@@ -28,12 +28,12 @@ pub(super) struct FromClearEnds {
 }
 
 impl FromClearEnds {
-    /// The seams of a garment with a pair whose sides have the body between (`across`,
-    /// given the pair's place among all the seams' pairs), both end pairs clear of it, and
+    /// The seams of a garment with a pair whose sides have the body between (`across`),
+    /// both end pairs clear of it, and
     /// an end pair that shares a particle with another seam; each pulled from such ends,
     /// the pairs clear of the body next to them at once. Every other pair is pulled as
     /// before; `weights` are each pair's when pulled.
-    pub(super) fn new(all: &[SeamPairs], weights: Vec<f64>, across: impl Fn(usize) -> bool) -> Self {
+    pub(super) fn new(all: &[SeamPairs], weights: Vec<f64>, across: impl Fn([usize; 2]) -> bool) -> Self {
         let pairs: Vec<[usize; 2]> = all.iter().flat_map(|s| s.pairs.iter().copied()).collect();
         let mut pulled = vec![true; pairs.len()];
         let mut seams = Vec::new();
@@ -41,7 +41,7 @@ impl FromClearEnds {
         for (s, seam) in all.iter().enumerate() {
             let range = start..start + seam.pairs.len();
             start = range.end;
-            let blocked: Vec<bool> = range.clone().map(&across).collect();
+            let blocked: Vec<bool> = seam.pairs.iter().map(|&pair| across(pair)).collect();
             if !blocked.iter().any(|&b| b) {
                 continue;
             }
@@ -168,8 +168,9 @@ mod tests {
         (vec![seam, other], x)
     }
 
-    fn across(k: usize) -> bool {
-        (3..=6).contains(&k)
+    /// Pairs 3 to 6 of the flounce's seam (particles 0-9 to 10-19) have the body between.
+    fn across([a, b]: [usize; 2]) -> bool {
+        b == 10 + a && (3..=6).contains(&a)
     }
 
     fn close(x: &mut [Vec3], k: usize) {
@@ -229,7 +230,9 @@ mod tests {
         // The body between as far as either end, the joined one or the free one: pulled
         // straight, as before.
         for blocked in [3..=9, 0..=6] {
-            let ends = FromClearEnds::new(&seams, vec![1.0; 11], |k| blocked.contains(&k));
+            let ends = FromClearEnds::new(&seams, vec![1.0; 11], |[a, b]| {
+                b == 10 + a && blocked.contains(&a)
+            });
             assert!(ends.is_empty() && !ends.pulls(0));
             assert_eq!(ends.weights(), vec![1.0; 11]);
         }

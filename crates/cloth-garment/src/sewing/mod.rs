@@ -337,9 +337,7 @@ where
             zip::held_open(garment, &sim, bodies.as_ref(), &garment.seams[s].pairs) == HeldOpen::Nothing
         };
         let x = sim.positions();
-        let pairs = garment.seam_pairs();
-        let ends = FromClearEnds::new(&garment.seams, seam_weights.clone(), |k| {
-            let [a, b] = pairs[k];
+        let ends = FromClearEnds::new(&garment.seams, seam_weights.clone(), |[a, b]| {
             bodies.segment_crossings(sim.time(), &x[a], &x[b]) > 0
         });
         if !clear(held) && !ends.pulls(held) {
