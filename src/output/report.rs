@@ -126,6 +126,18 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             "| particles of attached edges (a waist, a neckline), each held on one side of where it was placed | {n} |"
         )?;
     }
+    if let Some(fit) = &report.fit {
+        writeln!(
+            out,
+            "| where most stretched ({} in '{}'), the cloth round the body at rest / worn, and the body's girth inside it | {:.1} cm / {:.1} cm, {:.1} cm: {} |",
+            fit.thread,
+            fit.panel,
+            100.0 * fit.cloth_at_rest,
+            100.0 * fit.cloth_worn,
+            100.0 * fit.body_girth,
+            fit.asks_said()
+        )?;
+    }
     if let Some(verdict) = &report.verdict {
         writeln!(out, "\n**Verdict**: {verdict}.")?;
     }

@@ -5,6 +5,7 @@
 mod build;
 mod cloth_file;
 mod error;
+mod fit;
 mod folder;
 mod frame;
 mod observer;
@@ -19,6 +20,7 @@ mod warning;
 pub use build::{Prepared, PreparedCloth, SheetTest};
 pub use cloth_file::read_cloth_obj;
 pub use error::SceneFileError;
+pub use fit::Fit;
 pub use folder::{claim_output_folder, FolderRun, RunFolderError};
 pub use frame::{placement, UpAxis};
 pub use observer::RunObserver;

@@ -3,6 +3,7 @@
 //! an interrupt keeps the last good state and says what happened.
 
 use super::build::{Prepared, PreparedCloth, SheetTest};
+use super::fit::fit_where_stretched;
 use super::observer::RunObserver;
 use super::panel_report::panel_reports;
 use super::recorder::{Recorded, Recorder};
@@ -184,9 +185,16 @@ impl Prepared {
         let body: BodyIntersections = body_edges.iter().map(|(_, found)| *found).sum();
         let strain = StrainReport::new(&mesh, &positions);
         let strain_summary = StrainSummary::from_report(&strain);
-        let (panels, verdict) = match &panels_of {
+        let (panels, fit, verdict) = match &panels_of {
             Some((triangle_panel, names)) => {
                 let panels = panel_reports(names, triangle_panel, &mesh, &strain, &self_pairs, &body_edges);
+                let fit = (outcome == RunOutcome::Finished)
+                    .then(|| {
+                        let surfaces: Vec<_> =
+                            self.bodies.bodies().iter().map(|b| b.surface_at(time)).collect();
+                        fit_where_stretched(&mesh, &positions, &strain, &surfaces, triangle_panel, names)
+                    })
+                    .flatten();
                 let verdict = verdict(
                     &outcome,
                     &stages,
@@ -194,10 +202,11 @@ impl Prepared {
                     body.crossings,
                     &strain_summary,
                     &panels,
+                    fit.as_ref(),
                 );
-                (panels, verdict)
+                (panels, fit, verdict)
             }
-            None => (Vec::new(), None),
+            None => (Vec::new(), None, None),
         };
         let measurement = match (&outcome, sheet_test) {
             (RunOutcome::Finished, Some(test)) => Some(measure(test, &mesh, &positions)),
@@ -225,6 +234,7 @@ impl Prepared {
             attached_particles,
             tangles,
             panels,
+            fit,
             verdict,
             checkpoints,
             measurement,

@@ -3,6 +3,7 @@
 //! measure GarmentCode's corpus is judged by here). Where it is not, why, naming the
 //! panels to look at, so every garment that is not clean says so with its reason.
 
+use super::fit::Fit;
 use super::panel_report::PanelReport;
 use super::report::{RunOutcome, StageReport, StrainSummary};
 
@@ -24,7 +25,8 @@ const STRETCHED: &str = "stretched";
 pub const REASONS: [&str; 4] = [NOT_AT_REST, THROUGH_ITSELF, THROUGH_THE_BODY, STRETCHED];
 
 /// The verdict on a garment's run: `None` if it did not finish (its failure says why),
-/// else [`CLEAN`] or its reasons, joined by "; ".
+/// else [`CLEAN`] or its reasons, joined by "; ". A stretched garment's reason ends with
+/// what its cut asks where it is most stretched, if `fit` measured it.
 pub fn verdict(
     outcome: &RunOutcome,
     stages: &[StageReport],
@@ -32,6 +34,7 @@ pub fn verdict(
     body_intersections: usize,
     strain: &StrainSummary,
     panels: &[PanelReport],
+    fit: Option<&Fit>,
 ) -> Option<String> {
     if *outcome != RunOutcome::Finished {
         return None;
@@ -83,11 +86,15 @@ pub fn verdict(
             .map(|p| format!("'{}' {:.1} % {}", p.panel, p.strain.p99().0, p.strain.p99().1))
             .collect();
         let whole = format!("{STRETCHED}: p99 {thread} strain {p99:.1} %, over {CLEAN_P99_STRAIN} %");
-        reasons.push(if most.is_empty() {
+        let mut reason = if most.is_empty() {
             whole
         } else {
             format!("{whole} (most: {})", most.join(", "))
-        });
+        };
+        if let Some(fit) = fit {
+            reason += &format!(", {}", fit.said());
+        }
+        reasons.push(reason);
     }
     Some(if reasons.is_empty() {
         CLEAN.to_string()
@@ -141,6 +148,7 @@ mod tests {
             0,
             &strain(1.0, 4.9),
             &panels,
+            None,
         );
         assert_eq!(v.as_deref(), Some(CLEAN));
     }
@@ -152,6 +160,15 @@ mod tests {
             panel("skirt_front", 9.5, 3),
             panel("skirt_back", 7.3, 5),
         ];
+        let fit = Fit {
+            panel: "skirt_front".into(),
+            thread: "weft",
+            at: [0.0, -0.1, 0.9],
+            cloth_at_rest: 0.916,
+            cloth_worn: 0.969,
+            body_girth: 0.960,
+            asks: 100.0 * (0.960 / 0.916 - 1.0),
+        };
         let v = verdict(
             &RunOutcome::Finished,
             &[stage("step_limit")],
@@ -159,6 +176,7 @@ mod tests {
             2,
             &strain(0.5, 8.0),
             &panels,
+            Some(&fit),
         )
         .unwrap();
         assert!(
@@ -173,7 +191,7 @@ mod tests {
         assert!(v.contains("through the body: 2 crossings;"), "{v}");
         // Stretched: the whole, then the panels over the bound, most first; the bodice not.
         assert!(
-            v.contains("stretched: p99 weft strain 8.0 %, over 5 % (most: 'skirt_front' 9.5 % weft, 'skirt_back' 7.3 % weft)"),
+            v.contains("stretched: p99 weft strain 8.0 %, over 5 % (most: 'skirt_front' 9.5 % weft, 'skirt_back' 7.3 % weft), where most stretched ('skirt_front'), 91.6 cm of cloth at rest goes round 96.0 cm of body: the cut asks 4.8 %"),
             "{v}"
         );
         assert!(!v.contains("bodice"), "{v}");
@@ -187,7 +205,7 @@ mod tests {
             error: "seams".into(),
         };
         assert_eq!(
-            verdict(&failed, &[stage("failed")], 0, 0, &strain(0.0, 0.0), &[]),
+            verdict(&failed, &[stage("failed")], 0, 0, &strain(0.0, 0.0), &[], None),
             None
         );
     }
