@@ -160,7 +160,11 @@ fn most_stretched_place(mesh: &ClothMesh, x: &[Vec3], strains: &[f64], p99: f64)
     let mut order: Vec<usize> = place.into_iter().map(|(_, t)| t).collect();
     // Then the rest, most strained first: where the place itself is not gone round (a
     // skirt stretched most at its slit), the next place that is.
-    let mut elsewhere: Vec<usize> = (0..strains.len()).filter(|t| !order.contains(t)).collect();
+    let mut in_place = vec![false; strains.len()];
+    for &t in &order {
+        in_place[t] = true;
+    }
+    let mut elsewhere: Vec<usize> = (0..strains.len()).filter(|&t| !in_place[t]).collect();
     elsewhere.sort_by(|&a, &b| strains[b].total_cmp(&strains[a]));
     order.extend(elsewhere);
     order
