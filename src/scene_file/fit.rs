@@ -73,8 +73,11 @@ impl Fit {
 
 /// The fit where `mesh` at `x` is most stretched along the thread whose 99th percentile
 /// of `strain` is higher, against `bodies`; the panel of each triangle is
-/// `panel_names[triangle_panel[t]]`. `None` if the slice there does not go round any of
-/// the bodies (an open skirt's hem, a flat sheet), or the cloth is not stretched at all.
+/// `panel_names[triangle_panel[t]]`; `crosses(a, b)` says whether the segment from `a` to
+/// `b` passes through a body. A thread worn through the body (a cuff zipped through the
+/// forearm) does not say what the cut asks, so it is passed over for the next. `None` if
+/// no thread near the most stretched places goes round a body outside it (an open
+/// skirt's hem, a flat sheet), or the cloth is not stretched at all.
 pub fn fit_where_stretched(
     mesh: &ClothMesh,
     x: &[Vec3],
@@ -82,6 +85,7 @@ pub fn fit_where_stretched(
     bodies: &[TriSurface],
     triangle_panel: &[usize],
     panel_names: &[String],
+    crosses: &dyn Fn(&Vec3, &Vec3) -> bool,
 ) -> Option<Fit> {
     let (strains, p99, thread) = if strain.p99_weft >= strain.p99_warp {
         (&strain.weft, strain.p99_weft, "weft")
@@ -109,6 +113,10 @@ pub fn fit_where_stretched(
         let Some(ring) = threads.round(seed, &mut passed) else {
             continue;
         };
+        let n = ring.points.len();
+        if (0..n).any(|k| crosses(&ring.points[k], &ring.points[(k + 1) % n])) {
+            continue;
+        }
         let girth = Plane::fitted(&ring.points).and_then(|plane| girth_inside(bodies, &plane, &ring.points));
         if let Some(girth) = girth {
             found = Some((seed, ring, girth));
@@ -501,7 +509,15 @@ mod tests {
     fn fit_of(mesh: &ClothMesh, x: &[Vec3], bodies: &[TriSurface]) -> Option<Fit> {
         let strain = StrainReport::new(mesh, x);
         let panels = vec![0; mesh.triangles().len()];
-        fit_where_stretched(mesh, x, &strain, bodies, &panels, &["cuff".to_string()])
+        // The posts are round the z axis: a segment with one end inside one and the other
+        // outside passes through it.
+        let radius = |p: &Vec3| p.x.hypot(p.y);
+        let post_radius = bodies
+            .first()
+            .map_or(0.0, |b| b.vertices().iter().map(radius).fold(0.0, f64::max));
+        let inside = |p: &Vec3| radius(p) < post_radius * (PI / 64.0).cos();
+        let crosses = |a: &Vec3, b: &Vec3| inside(a) != inside(b);
+        fit_where_stretched(mesh, x, &strain, bodies, &panels, &["cuff".to_string()], &crosses)
     }
 
     /// The perimeter of a regular polygon of `sides` round a circle of `radius`'s.
@@ -565,5 +581,16 @@ mod tests {
         assert!(fit.at[2] > 0.2 * 0.1 - 1e-9, "{fit:?}");
         // Measured where the cloth goes round: no wider there than the rows above the slit.
         assert!(fit.cloth_worn <= polygon(0.054, 48) + 1e-9, "{fit:?}");
+    }
+
+    #[test]
+    fn a_thread_worn_through_the_body_is_passed_over() {
+        // A cuff with one column of particles pushed into the post: every thread round it
+        // passes through the post, and says nothing of the fit.
+        let (mesh, mut x) = tube(0.30, 0.051, 48, 6, 0);
+        for p in x.iter_mut().step_by(48) {
+            *p *= 0.5;
+        }
+        assert_eq!(fit_of(&mesh, &x, &[post(0.05, 64)]), None);
     }
 }

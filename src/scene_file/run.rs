@@ -14,7 +14,7 @@ use super::SceneFileError;
 use crate::garment::sewing::{drape, sew};
 use crate::garment::GarmentError;
 use cloth_core::{
-    body_intersections_by_edge, self_intersecting_pairs, BodyIntersections, ClothMesh, StopReason,
+    body_intersections_by_edge, self_intersecting_pairs, BodyIntersections, ClothMesh, Collider, StopReason,
     StrainReport, Vec3,
 };
 use std::path::Path;
@@ -192,7 +192,17 @@ impl Prepared {
                     .then(|| {
                         let surfaces: Vec<_> =
                             self.bodies.bodies().iter().map(|b| b.surface_at(time)).collect();
-                        fit_where_stretched(&mesh, &positions, &strain, &surfaces, triangle_panel, names)
+                        let crosses =
+                            |a: &Vec3, b: &Vec3| self.bodies.as_ref().segment_crossings(time, a, b) > 0;
+                        fit_where_stretched(
+                            &mesh,
+                            &positions,
+                            &strain,
+                            &surfaces,
+                            triangle_panel,
+                            names,
+                            &crosses,
+                        )
                     })
                     .flatten();
                 let verdict = verdict(
