@@ -152,7 +152,8 @@ pub struct RunReport {
     /// The strain and the intersections above, panel by panel (garments only).
     pub panels: Vec<PanelReport>,
     /// What the cut asks of the fabric round the body where a finished garment is most
-    /// stretched, if the cloth goes round the body there (see [`super::Fit`]).
+    /// stretched, if the cloth goes round the body there (see [`super::Fit`]); not measured
+    /// for a garment through the body.
     pub fit: Option<super::Fit>,
     /// A finished garment's verdict: "clean" (at rest, nothing through itself or the
     /// body, p99 warp and weft strain under 5 %) or why not, naming the panels (see

@@ -188,7 +188,10 @@ impl Prepared {
         let (panels, fit, verdict) = match &panels_of {
             Some((triangle_panel, names)) => {
                 let panels = panel_reports(names, triangle_panel, &mesh, &strain, &self_pairs, &body_edges);
-                let fit = (outcome == RunOutcome::Finished)
+                // A garment worn through the body does not show how its cut fits it: a
+                // cuff zipped through the forearm (GarmentCode's rand_1_094) encloses a
+                // sliver of the arm, and would read as loose.
+                let fit = (outcome == RunOutcome::Finished && body.crossings == 0)
                     .then(|| {
                         let surfaces: Vec<_> =
                             self.bodies.bodies().iter().map(|b| b.surface_at(time)).collect();
