@@ -10,6 +10,7 @@
 //! rand_1_061 on `mean_all`: its waistband's weft, 84.3 cm at rest, goes round 91.1 cm of
 //! waist, asking 8.0 %; it rests at p99 weft 8.7 %).
 
+use crate::garment::meshing::encloses;
 use cloth_collide::TriSurface;
 use cloth_core::{ClothMesh, StrainReport, Vec3};
 use nalgebra::{Matrix3, Vector2};
@@ -250,8 +251,9 @@ struct Ring {
 struct Threads<'a> {
     mesh: &'a ClothMesh,
     x: &'a [Vec3],
-    /// The triangles beside each edge, by its ends (lower first).
-    beside: HashMap<[usize; 2], Vec<usize>>,
+    /// The two triangles across each inner edge, by its ends (lower first): the mesh has
+    /// no edge of more than two.
+    across: HashMap<[usize; 2], [usize; 2]>,
     /// The thread's direction in the panels' material coordinates.
     axis: Vector2<f64>,
 }
@@ -259,12 +261,7 @@ struct Threads<'a> {
 impl<'a> Threads<'a> {
     /// The weft threads of `mesh` at `x` (`weft`), else the warp threads.
     fn new(mesh: &'a ClothMesh, x: &'a [Vec3], weft: bool) -> Self {
-        let mut beside: HashMap<[usize; 2], Vec<usize>> = HashMap::new();
-        for (t, c) in mesh.triangles().iter().enumerate() {
-            for k in 0..3 {
-                beside.entry(key(c[k], c[(k + 1) % 3])).or_default().push(t);
-            }
-        }
+        let across = mesh.hinges().iter().map(|h| (h.edge, h.triangles)).collect();
         let axis = if weft {
             Vector2::new(0.0, 1.0)
         } else {
@@ -273,7 +270,7 @@ impl<'a> Threads<'a> {
         Self {
             mesh,
             x,
-            beside,
+            across,
             axis,
         }
     }
@@ -345,7 +342,8 @@ impl<'a> Threads<'a> {
             }
             // On into the triangle across that edge, along its own thread, pointing into it.
             let edge_key = key(i, j);
-            let u = self.beside[&edge_key].iter().copied().find(|&u| u != t)?;
+            let pair = self.across.get(&edge_key)?;
+            let u = if pair[0] == t { pair[1] } else { pair[0] };
             let cu = triangles[u];
             let uv_u = mesh.corner_uv(u);
             let (ki, kj) = (cu.iter().position(|&v| v == i)?, cu.iter().position(|&v| v == j)?);
@@ -402,7 +400,7 @@ fn girth_inside(bodies: &[TriSurface], plane: &Plane, points: &[Vec3]) -> Option
                 let (a, b) = (&c[k], &c[(k + 1) % 3]);
                 if plane.above(a) != plane.above(b) {
                     let p = plane.in_plane(&a.lerp(b, plane.cut(a, b)));
-                    if encloses(&ring, &p) {
+                    if encloses(&ring, p) {
                         inside.push(p);
                     }
                 }
@@ -411,19 +409,6 @@ fn girth_inside(bodies: &[TriSurface], plane: &Plane, points: &[Vec3]) -> Option
     }
     let hull = convex_hull(inside);
     (hull.len() >= 3).then(|| perimeter(&hull))
-}
-
-/// Whether the closed polygon `ring` encloses `p` (an odd number of its sides cross the
-/// ray from `p` along +x).
-fn encloses(ring: &[Vector2<f64>], p: &Vector2<f64>) -> bool {
-    let mut odd = false;
-    for k in 0..ring.len() {
-        let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            odd = !odd;
-        }
-    }
-    odd
 }
 
 /// The convex hull of `points`, anticlockwise (Andrew's monotone chain).
