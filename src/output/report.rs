@@ -1,6 +1,6 @@
 //! report.json and report.md: the same figures, for programs and for people.
 
-use crate::garment::sewing::StallThen;
+use crate::garment::sewing::{SeamStall, StallThen};
 use crate::obj::write_atomically;
 use crate::scene_file::{RunOutcome, RunReport};
 use std::io::Write;
@@ -149,28 +149,7 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
              | step | widest seam | gap, mm | then |\n|---|---|---|---|"
         )?;
         for s in &report.seam_stalls {
-            let then = match s.then {
-                StallThen::FrictionReleased => {
-                    "the body's friction and the hold on the panels' height let go, for the panels to slide round it"
-                        .to_string()
-                }
-                StallThen::Pulled => format!("pull at {} times full from then on", s.pull_factor),
-                StallThen::Welded => {
-                    format!("welded where they stood (pull at {} times full)", s.pull_factor)
-                }
-                StallThen::Zipped => format!(
-                    "nothing between the open pairs' sides: drawn together and welded (pull at {} times full)",
-                    s.pull_factor
-                ),
-                StallThen::StartedOver => format!(
-                    "the body between its own sides: sewn again from the placed panels with every seam clear as placed drawn shut first and held shut (pull at {} times full)",
-                    s.pull_factor
-                ),
-                StallThen::FromClearEnd => {
-                    "the body across its sides as placed: pulled shut from its clear end joined to another seam, a pair at a time, each once the one before had closed (gap as placed)"
-                        .to_string()
-                }
-            };
+            let then = then_said(s);
             writeln!(out, "| {} | {} | {:.2} | {then} |", s.step, s.seam, 1e3 * s.gap)?;
         }
     }
@@ -274,4 +253,78 @@ fn write_panels(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()> 
         )?;
     }
     Ok(())
+}
+
+/// What was done about a stall, as the last cell of its row.
+fn then_said(s: &SeamStall) -> String {
+    match s.then {
+        StallThen::FrictionReleased => {
+            "the body's friction and the hold on the panels' height let go, for the panels to slide round it"
+                .to_string()
+        }
+        StallThen::Pulled => format!("pull at {} times full from then on", s.pull_factor),
+        StallThen::Welded => {
+            format!("welded where they stood (pull at {} times full)", s.pull_factor)
+        }
+        StallThen::Zipped => {
+            let ring = match s.ring_asks {
+                Some(asks) if asks > 0.0 => format!(
+                    "; the way round the body through it asked {:.0} % more of its cloth",
+                    100.0 * asks
+                ),
+                Some(asks) => format!(
+                    "; the way round the body through it had {:.0} % to spare",
+                    -100.0 * asks
+                ),
+                None => String::new(),
+            };
+            format!(
+                "nothing between the open pairs' sides: drawn together and welded (pull at {} times full){ring}",
+                s.pull_factor
+            )
+        }
+        StallThen::StartedOver => format!(
+            "the body between its own sides: sewn again from the placed panels with every seam clear as placed drawn shut first and held shut (pull at {} times full)",
+            s.pull_factor
+        ),
+        StallThen::FromClearEnd => {
+            "the body across its sides as placed: pulled shut from its clear end joined to another seam, a pair at a time, each once the one before had closed (gap as placed)"
+                .to_string()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_zipped_stall_says_what_closing_asked_of_the_way_round_the_body() {
+        let zipped = |ring_asks| SeamStall {
+            step: 177,
+            seam: "panel 'right_sleeve_f', edge 1 to panel 'right_sleeve_b', edge 3".into(),
+            gap: 0.0263,
+            pull_factor: 1024.0,
+            then: StallThen::Zipped,
+            ring_asks,
+        };
+        let said = then_said(&zipped(Some(0.634)));
+        assert!(
+            said.starts_with(
+                "nothing between the open pairs' sides: drawn together and welded (pull at 1024 times full)"
+            ),
+            "{said}"
+        );
+        assert!(
+            said.ends_with("; the way round the body through it asked 63 % more of its cloth"),
+            "{said}"
+        );
+        let said = then_said(&zipped(Some(-0.04)));
+        assert!(
+            said.ends_with("; the way round the body through it had 4 % to spare"),
+            "{said}"
+        );
+        let said = then_said(&zipped(None));
+        assert!(said.ends_with("(pull at 1024 times full)"), "{said}");
+    }
 }

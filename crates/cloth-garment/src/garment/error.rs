@@ -57,9 +57,9 @@ pub enum GarmentError {
         tolerance_mm: f64,
     },
     /// The seams stopped closing with the pull at its strongest, too far apart to weld
-    /// where they stand, and too far to zip shut (beyond a zip's reach, their ring asking
-    /// more than the sewing's `ZIP_RING`) or with a body or cloth between the sides of
-    /// their open pairs.
+    /// where they stand, with a body between the sides of their open pairs, or cloth
+    /// across a gap wider than a weld over it reaches (seams with nothing between are
+    /// zipped shut).
     #[error(
         "the seams stopped closing at step {steps}: {seam} is still {gap_mm:.1} mm apart with the \
          pull at {pull_factor} times its strength, too far to weld (over {weld_mm:.1} mm); \
@@ -107,7 +107,7 @@ pub enum HeldOpen {
     Body,
     /// Nothing: the cloth round them holds the sides apart (too small for the body it goes
     /// round, or held by its own contact elsewhere, as godets touching at their corners);
-    /// such seams are zipped shut when near enough.
+    /// such seams are zipped shut.
     Nothing,
 }
 

@@ -63,6 +63,11 @@ pub struct SeamStall {
     pub pull_factor: f64,
     /// What was done.
     pub then: StallThen,
+    /// For a zip, what closing asked of the ring round the body through the widest pair
+    /// (see [`crate::garment::Ring::closing_strain`]): the stretch as a fraction, or the
+    /// slack left as a negative one; none where no such ring goes round a body.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ring_asks: Option<f64>,
 }
 
 /// What was done about seams that stalled.
@@ -76,8 +81,8 @@ pub enum StallThen {
     /// The pull was raised (or, having torn the cloth, lowered) and sewing went on.
     Pulled,
     /// With the pull at its strongest, the seams were welded where they stood (the widest
-    /// gap under [`FORCED_WELD`] of a cell, or under [`ZIP_WELD`] with only cloth between
-    /// the open pairs' sides).
+    /// gap under [`FORCED_WELD`] of a cell, or under [`CLOTH_WELD`] with only cloth
+    /// between the open pairs' sides).
     Welded,
     /// With the pull at its strongest and nothing between the open pairs' sides, they were
     /// drawn together over a stall's window of steps and welded (see `zip`).
@@ -200,6 +205,7 @@ pub fn sew(
                     gap: held.gap,
                     pull_factor: held.pull_factor,
                     then: StallThen::StartedOver,
+                    ring_asks: None,
                 });
                 attempt.held = Some(held.seam);
                 attempt.failed = Some(error);
@@ -370,6 +376,7 @@ where
         gap,
         pull_factor,
         then,
+        ring_asks: None,
     };
     if let Some(ends) = &from_ends {
         let x = sim.positions();
@@ -471,15 +478,14 @@ where
                     HeldOpen::Body => (false, true),
                     HeldOpen::Nothing => (false, false),
                 };
-                // What closing asks of the cloth round the body: a zip's bound where
-                // nothing lies between, and the failure's figure where it fails.
+                // What closing asks of the cloth round the body: said with the zip, and
+                // with the failure.
                 let ring = if gap > weld {
                     ring_of(garment, &sim, bodies.as_ref(), seam)
                 } else {
                     None
                 };
-                let takes_it = ring.as_ref().is_some_and(|r| r.closing_strain() <= ZIP_RING);
-                match AtStrongest::choose(gap, weld, ZIP_WELD * spacing, cloth, body, takes_it) {
+                match AtStrongest::choose(gap, weld, CLOTH_WELD * spacing, cloth, body) {
                     AtStrongest::Weld => {
                         stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Welded));
                         break;
@@ -487,7 +493,9 @@ where
                     AtStrongest::Zip => {
                         let open = zip::open_pairs(garment, sim.positions(), settings.gap_tolerance);
                         zip = Some(zip::Zip::new(open, sim.positions(), stall.window));
-                        stalls.push(stall_at(steps, seam, gap, pull_level.boost, StallThen::Zipped));
+                        let mut zipped = stall_at(steps, seam, gap, pull_level.boost, StallThen::Zipped);
+                        zipped.ring_asks = ring.as_ref().map(Ring::closing_strain);
+                        stalls.push(zipped);
                     }
                     AtStrongest::Fail { reach } => {
                         // Said seam by seam: what lies between the named seam's own sides,
@@ -938,27 +946,13 @@ const BOOST_STEP: f64 = 4.0;
 /// beside it at 31 % weft).
 pub const FORCED_WELD: f64 = 0.5;
 
-/// Seams still open wider than [`FORCED_WELD`] when the pull at its strongest stalls are
-/// zipped shut (see `zip`) if nothing lies between their open pairs' sides, or welded
-/// where they stand if only cloth does, when no pair is farther apart than this fraction
-/// of the pairs' spacing: each particle then moves at most half a cell (over a stall's
-/// window when zipped), and the cloth beside it follows. Wider, the
-/// sewing fails naming the seam: GarmentCode's rand_1_095, a top whose side seam stalled
-/// 32 mm open (2.4 spacings) beside a cuff closed at 1,024 times the pull, zipped, was
-/// stretched to 44 % (p99 weft) and did not come to rest in 791 drape steps.
-pub const ZIP_WELD: f64 = 1.0;
-
-/// Seams wider than [`ZIP_WELD`] apart when the pull at its strongest stalls, with
-/// nothing between their sides, are zipped shut still where closing stretches the ring
-/// round the body through the widest pair (see [`crate::garment::Ring`]) by no more than
-/// this: about as far as the strongest pull stretches cloth held open (GarmentCode's
-/// pencil skirts, closed at 1,024 times the pull round hips as wide as them, keep under
-/// 20 %; see [`TORN_P99`]). GarmentCode's rand_1_001 on `mean_male`, a waistband alone,
-/// stopped 17.9 mm open, its ring asking 8 %: zipped. Its rand_1_071 and rand_1_095 on
-/// `mean_all`, sleeves whose ends are cut to the wrist's girth (16.6 cm) and end at the
-/// forearm (25.2 cm round there), stopped 26 and 22 mm open, their rings round the arm
-/// asking 63 and 51 %: failed, saying so.
-pub const ZIP_RING: f64 = 0.15;
+/// Seams still open wider than [`FORCED_WELD`] when the pull at its strongest stalls,
+/// with only cloth between their open pairs' sides, are welded where they stand when no
+/// pair is farther apart than this fraction of the pairs' spacing: each particle then
+/// moves at most half a cell, and the weld's crossings are let through in the drape.
+/// Wider, the sewing fails naming the seam and the cloth between. (With nothing between,
+/// they are zipped however far apart; see `zip`.)
+pub const CLOTH_WELD: f64 = 1.0;
 
 /// How many stalls that let cloth found across the seams through put off the end of a
 /// pull at its strongest (a weld where they stand, or the sewing's failure). GarmentCode's
