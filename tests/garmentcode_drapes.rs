@@ -181,7 +181,11 @@ fn godets_laid_corner_to_corner_part_and_are_sewn_into_their_slits() {
     let held = held.unwrap();
     let stalls = &held.report.stalls;
     let last = stalls.last().expect("stalled");
-    assert_eq!((last.then, last.pull_factor), (StallThen::Zipped, 1024.0), "{stalls:?}");
+    assert_eq!(
+        (last.then, last.pull_factor),
+        (StallThen::Zipped, 1024.0),
+        "{stalls:?}"
+    );
     assert!(last.gap > 0.03, "{last:?}");
     assert_eq!(last.ring_asks, None, "{last:?}");
     assert_eq!(held.report.weld_crossings.left, 0, "{:?}", held.report);
