@@ -13,4 +13,6 @@ pub mod presets;
 pub mod render;
 pub mod scene_file;
 pub mod scenes;
+#[cfg(test)]
+mod scratch;
 pub mod validation;

@@ -1,5 +1,6 @@
 //! report.json and report.md: the same figures, for programs and for people.
 
+use crate::garment::garment::closing_said;
 use crate::garment::sewing::{SeamStall, StallThen};
 use crate::obj::write_atomically;
 use crate::scene_file::{RunOutcome, RunReport};
@@ -267,17 +268,9 @@ fn then_said(s: &SeamStall) -> String {
             format!("welded where they stood (pull at {} times full)", s.pull_factor)
         }
         StallThen::Zipped => {
-            let ring = match s.ring_asks {
-                Some(asks) if asks > 0.0 => format!(
-                    "; the way round the body through it asked {:.0} % more of its cloth",
-                    100.0 * asks
-                ),
-                Some(asks) => format!(
-                    "; the way round the body through it had {:.0} % to spare",
-                    -100.0 * asks
-                ),
-                None => String::new(),
-            };
+            let ring = s.ring_asks.map_or(String::new(), |asks| {
+                format!("; the way round the body through it, {}", closing_said(asks))
+            });
             format!(
                 "nothing between the open pairs' sides: drawn together and welded (pull at {} times full){ring}",
                 s.pull_factor
@@ -316,12 +309,12 @@ mod tests {
             "{said}"
         );
         assert!(
-            said.ends_with("; the way round the body through it asked 63 % more of its cloth"),
+            said.ends_with("; the way round the body through it, which closing stretches 63 %"),
             "{said}"
         );
         let said = then_said(&zipped(Some(-0.04)));
         assert!(
-            said.ends_with("; the way round the body through it had 4 % to spare"),
+            said.ends_with("; the way round the body through it, with 4 % to spare when closed"),
             "{said}"
         );
         let said = then_said(&zipped(None));

@@ -210,27 +210,10 @@ fn flat_coordinates(positions: &[Vec3]) -> Result<Vec<Vector2<f64>>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scratch::ScratchFile;
 
-    /// A file in the temporary folder, removed when dropped.
-    struct Scratch(std::path::PathBuf);
-
-    impl std::ops::Deref for Scratch {
-        type Target = Path;
-        fn deref(&self) -> &Path {
-            &self.0
-        }
-    }
-
-    impl Drop for Scratch {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_file(&self.0);
-        }
-    }
-
-    fn write(name: &str, text: &str) -> Scratch {
-        let path = std::env::temp_dir().join(format!("cloth_file_{}_{name}", std::process::id()));
-        std::fs::write(&path, text).unwrap();
-        Scratch(path)
+    fn write(name: &str, text: &str) -> ScratchFile {
+        ScratchFile::new(name, text.as_bytes())
     }
 
     #[test]

@@ -102,24 +102,7 @@ fn check(path: &Path, mesh: &RenderMesh) -> Result<(), RenderError> {
 mod tests {
     use super::super::MeshColours;
     use super::*;
-    use std::path::PathBuf;
-
-    /// A file in the temporary folder, removed when dropped.
-    struct Scratch(PathBuf);
-
-    impl Scratch {
-        fn new(name: &str, contents: &[u8]) -> Self {
-            let path = std::env::temp_dir().join(format!("cloth-render-{}-{name}", std::process::id()));
-            std::fs::write(&path, contents).unwrap();
-            Self(path)
-        }
-    }
-
-    impl Drop for Scratch {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_file(&self.0);
-        }
-    }
+    use crate::scratch::ScratchFile;
 
     const HEADER: &str =
         "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n";
@@ -131,8 +114,8 @@ mod tests {
              element face 1\nproperty list uchar int vertex_indices\nend_header\n\
              0 0 0 9 9 9 0\n1 0 0 9 9 9 2.5\n1 0 1 9 9 9 5\n0 0 1 9 9 9 7\n4 0 1 2 3\n"
         );
-        let file = Scratch::new("strain.ply", text.as_bytes());
-        let loaded = read_render_mesh(&file.0).unwrap();
+        let file = ScratchFile::new("strain.ply", text.as_bytes());
+        let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::Strain);
         assert!(loaded.wants_legend());
         // A quad is two triangles sharing its first corner.
@@ -153,8 +136,8 @@ mod tests {
              element face 2\nproperty list uchar uint vertex_index\nend_header\n\
              0 0 0 255 0 0\n1 0 0 0 255 0\n1 0 1 0 0 255\n0 0 1 10 20 30\n3 0 1 2\n3 0 2 3\n"
         );
-        let file = Scratch::new("colours.ply", text.as_bytes());
-        let loaded = read_render_mesh(&file.0).unwrap();
+        let file = ScratchFile::new("colours.ply", text.as_bytes());
+        let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::FromFile);
         assert_eq!(
             loaded.mesh.colours,
@@ -177,8 +160,8 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
         for i in [0i32, 1, 2] {
             bytes.extend(i.to_le_bytes());
         }
-        let file = Scratch::new("binary.ply", &bytes);
-        let loaded = read_render_mesh(&file.0).unwrap();
+        let file = ScratchFile::new("binary.ply", &bytes);
+        let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::Plain);
         assert_eq!(loaded.mesh.positions[1], crate::Vec3::new(2.0, 0.0, 0.0));
         assert_eq!(loaded.mesh.positions[2], crate::Vec3::new(0.0, 0.0, 3.0));
@@ -195,12 +178,12 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
             ("no-z.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n".to_string(), "z"),
         ];
         for (name, text, place) in cases {
-            let file = Scratch::new(name, text.as_bytes());
-            let message = match read_render_mesh(&file.0) {
+            let file = ScratchFile::new(name, text.as_bytes());
+            let message = match read_render_mesh(&file) {
                 Ok(_) => panic!("{name} was accepted"),
                 Err(e) => e.to_string(),
             };
-            assert!(message.contains(&file.0.display().to_string()), "{message}");
+            assert!(message.contains(&file.display().to_string()), "{message}");
             assert!(message.contains(place), "{name}: {message}");
         }
     }
@@ -220,24 +203,24 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
     #[test]
     fn obj_models_are_merged_and_polygons_triangulated() {
         let text = "o a\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\no b\nv 0 1 0\nv 1 1 0\nv 0 1 1\nf 5 6 7\nl 1 5\n";
-        let file = Scratch::new("two.obj", text.as_bytes());
-        let loaded = read_render_mesh(&file.0).unwrap();
+        let file = ScratchFile::new("two.obj", text.as_bytes());
+        let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::Plain);
         assert_eq!(loaded.mesh.positions.len(), 7);
         assert_eq!(loaded.mesh.triangles.len(), 3);
         // The second object's triangle refers to its own corners, after the first's.
         let t = loaded.mesh.triangles[2];
         assert!(t.iter().all(|&i| loaded.mesh.positions[i].y == 1.0), "{t:?}");
-        let bad = Scratch::new("bad.obj", b"v 0 0 0\nv 1 0 0\nf 1 2 3\n");
-        let e = read_render_mesh(&bad.0).unwrap_err().to_string();
+        let bad = ScratchFile::new("bad.obj", b"v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+        let e = read_render_mesh(&bad).unwrap_err().to_string();
         assert!(e.contains("bad.obj"), "{e}");
     }
 
     #[test]
     fn obj_vertex_colours_are_kept() {
         let text = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 0 1 0 0 1\nf 1 2 3\n";
-        let file = Scratch::new("coloured.obj", text.as_bytes());
-        let loaded = read_render_mesh(&file.0).unwrap();
+        let file = ScratchFile::new("coloured.obj", text.as_bytes());
+        let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::FromFile);
         let MeshColours::PerVertex(c) = &loaded.mesh.colours else {
             panic!("no vertex colours")

@@ -1,6 +1,6 @@
 //! What can go wrong making, sewing and draping a garment.
 
-use super::ring::Ring;
+use super::ring::{closing_said, Ring};
 use crate::meshing::MeshingError;
 use crate::pattern::PatternError;
 use cloth_core::{MeshError, ParamError, SimError};
@@ -117,17 +117,12 @@ fn ring_said(ring: &Option<Box<Ring>>) -> String {
     let Some(ring) = ring else {
         return String::new();
     };
-    let strain = 100.0 * ring.closing_strain();
-    let round = format!(
-        "; the way round the body from side to side, through panel {}, is {:.1} cm of cloth",
+    format!(
+        "; the way round the body from side to side, through panel {}, is {:.1} cm of cloth, {}",
         quoted(&ring.panels),
-        100.0 * ring.rest
-    );
-    if strain > 0.0 {
-        format!("{round}, which closing stretches {strain:.0} %")
-    } else {
-        format!("{round}, with {:.0} % to spare when closed", -strain)
-    }
+        100.0 * ring.rest,
+        closing_said(ring.closing_strain())
+    )
 }
 
 /// Panel names, each in quotes, separated by commas.

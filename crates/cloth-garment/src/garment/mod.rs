@@ -13,7 +13,7 @@ mod weld;
 pub use error::{GarmentError, HeldOpen};
 pub use layers::Layers;
 pub use placement_check::PlacementWarning;
-pub use ring::Ring;
+pub use ring::{closing_said, Ring};
 pub use size::{triangles_in, DEFAULT_MAX_TRIANGLES};
 pub use touching::{Touching, TOUCH};
 pub use weld::Welded;

@@ -40,6 +40,16 @@ impl Ring {
     }
 }
 
+/// A ring's closing strain (see [`Ring::closing_strain`]) as the end of a sentence about
+/// the ring: the stretch closing asks of it, or the slack it keeps.
+pub fn closing_said(strain: f64) -> String {
+    if strain > 0.0 {
+        format!("which closing stretches {:.0} %", 100.0 * strain)
+    } else {
+        format!("with {:.0} % to spare when closed", -100.0 * strain)
+    }
+}
+
 /// A cost compared in a heap: finite and non-negative, so ordered by its bits.
 fn key(d: f64) -> Reverse<u64> {
     Reverse(d.to_bits())
