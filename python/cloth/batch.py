@@ -689,7 +689,9 @@ class DrapeResult:
     ``draping_steps``, ``drape_ended``, ``self_intersections``, ``body_intersections``,
     ``thin_parts_passed`` (crossings of the body's thin parts by panels dressing the legs,
     which pass them), ``deepest_penetration`` (m), ``max_warp``, ``max_weft``,
-    ``p99_warp``, ``p99_weft`` (%))."""
+    ``p99_warp``, ``p99_weft`` (%), ``fit_asks`` (what the cut asks of the fabric round
+    the body where the garment is most stretched, %; negative, the slack it leaves; ``None``
+    where not measured))."""
 
     batch: BatchResult
     entries: list[dict[str, Any]]

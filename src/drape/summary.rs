@@ -1,7 +1,7 @@
 //! The batch's summary: one entry per pattern, read back from the report its run wrote,
 //! as JSON (`summary.json`) and as a table (`summary.md`).
 
-use crate::scene_file::{median, CLEAN, CLEAN_P99_STRAIN, REASONS};
+use crate::scene_file::{median, CLEAN, CLEAN_P99_STRAIN, REASONS, STRETCHED};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::fmt::Write as _;
@@ -44,6 +44,10 @@ pub struct SummaryEntry {
     pub max_weft: Option<f64>,
     pub p99_warp: Option<f64>,
     pub p99_weft: Option<f64>,
+    /// What a finished garment's cut asks of the fabric round the body where it is most
+    /// stretched, % (negative: the slack it leaves there); none where the fit was not
+    /// measured (see [`crate::scene_file::Fit`]).
+    pub fit_asks: Option<f64>,
 }
 
 impl SummaryEntry {
@@ -69,6 +73,7 @@ impl SummaryEntry {
             max_weft: None,
             p99_warp: None,
             p99_weft: None,
+            fit_asks: None,
         }
     }
 
@@ -114,6 +119,7 @@ impl SummaryEntry {
             max_weft: r["strain"]["max_weft"].as_f64(),
             p99_warp: r["strain"]["p99_warp"].as_f64(),
             p99_weft: r["strain"]["p99_weft"].as_f64(),
+            fit_asks: r["fit"]["asks"].as_f64(),
         })
     }
 
@@ -232,6 +238,26 @@ fn tally(entries: &[SummaryEntry]) -> String {
             counts.join(", ")
         );
     }
+    // Stretched and nothing else, where the cut is smaller than the body: the design asks
+    // that stretch of the fabric on this body, whatever the drape does.
+    let cut_small: Vec<f64> = entries
+        .iter()
+        .filter(|e| {
+            e.verdict
+                .as_deref()
+                .is_some_and(|v| v != CLEAN && v.split("; ").all(|r| r.starts_with(STRETCHED)))
+        })
+        .filter_map(|e| e.fit_asks.filter(|&asks| asks > 0.0))
+        .collect();
+    if !cut_small.is_empty() {
+        let least = cut_small.iter().copied().fold(f64::INFINITY, f64::min);
+        let most = cut_small.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let _ = writeln!(
+            out,
+            "Stretched only, each cut smaller than the body where it is most stretched: {} (the cut asks {least:.1} to {most:.1} % round the body there).\n",
+            cut_small.len()
+        );
+    }
     let failed = entries.iter().filter(|e| e.outcome == "failed").count();
     if failed > 0 {
         let timed_out = entries.iter().filter(|e| e.timed_out()).count();
@@ -324,5 +350,37 @@ mod tests {
             "{table}"
         );
         assert!(table.contains("median 20.0 s, slowest 30.0 s (b)"), "{table}");
+        assert!(!table.contains("Stretched only"), "{table}");
+    }
+
+    #[test]
+    fn garments_stretched_only_where_cut_smaller_than_the_body_are_counted_with_what_the_cut_asks() {
+        let stretched = |name: &str, verdict: &str, asks: Option<f64>| {
+            let mut e = entry(name, 1.0, Some(verdict));
+            e.fit_asks = asks;
+            e
+        };
+        let only = "stretched: p99 weft strain 8.0 %, over 5 %";
+        let entries = [
+            stretched("small", only, Some(8.0)),
+            stretched("a little small", only, Some(4.2)),
+            // Stretched with room to spare, or unmeasured: not the cut's doing, or not known.
+            stretched("roomy", only, Some(-3.0)),
+            stretched("unmeasured", only, None),
+            // Through itself too: not stretched only.
+            stretched(
+                "tangled",
+                &format!("through itself: 2 edge-triangle pairs; {only}"),
+                Some(6.0),
+            ),
+            stretched("clean", CLEAN, Some(1.0)),
+        ];
+        let table = markdown(&entries);
+        assert!(
+            table.contains(
+                "Stretched only, each cut smaller than the body where it is most stretched: 2 (the cut asks 4.2 to 8.0 % round the body there)."
+            ),
+            "{table}"
+        );
     }
 }

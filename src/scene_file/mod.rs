@@ -32,7 +32,7 @@ pub use report::{
     TangleRecord,
 };
 pub use run::RunResult;
-pub use verdict::{CLEAN, CLEAN_P99_STRAIN, REASONS};
+pub use verdict::{CLEAN, CLEAN_P99_STRAIN, REASONS, STRETCHED};
 pub use warning::SceneWarning;
 
 use std::path::{Path, PathBuf};

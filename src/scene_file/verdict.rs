@@ -21,7 +21,7 @@ pub const CLEAN: &str = "clean";
 const NOT_AT_REST: &str = "not at rest";
 const THROUGH_ITSELF: &str = "through itself";
 const THROUGH_THE_BODY: &str = "through the body";
-const STRETCHED: &str = "stretched";
+pub const STRETCHED: &str = "stretched";
 pub const REASONS: [&str; 4] = [NOT_AT_REST, THROUGH_ITSELF, THROUGH_THE_BODY, STRETCHED];
 
 /// The verdict on a garment's run: `None` if it did not finish (its failure says why),
