@@ -245,7 +245,7 @@ fn tally(entries: &[SummaryEntry]) -> String {
         .filter(|e| {
             e.verdict
                 .as_deref()
-                .is_some_and(|v| v != CLEAN && v.split("; ").all(|r| r.starts_with(STRETCHED)))
+                .is_some_and(|v| v.split("; ").all(|r| r.starts_with(STRETCHED)))
         })
         .filter_map(|e| e.fit_asks.filter(|&asks| asks > 0.0))
         .collect();
