@@ -11,7 +11,7 @@
 
 use cloth::collide::{Bodies, Body, TriSurface};
 use cloth::scenes::SphereDrop;
-use cloth::{Collider, Proximity, Vec3};
+use cloth::{math::Vec3, Collider, Proximity};
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::prelude::*;
 use std::hint::black_box;

@@ -3,7 +3,7 @@
 //! implicit Euler at h = 1/60 s. Target: one implicit step in at most 20 ms median on
 //! 2 cores (the source needed 8 to 12 s). Run with `cargo bench --bench step`.
 
-use cloth::{Fabric, GridBuilder, Pin, Simulation, SimulationBuilder, Vec3};
+use cloth::{math::Vec3, Fabric, GridBuilder, Pin, Simulation, SimulationBuilder};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::time::Duration;

@@ -5,7 +5,8 @@ use crate::garment::sewing::{drape_simulation, sew};
 use crate::scene_file::{ClothSpec, PreparedCloth, SceneFile};
 use crate::scenes::SphereDrop;
 use cloth_core::{
-    Fabric, GridBuilder, Interrupt, Pin, SelfCollision, Simulation, SimulationBuilder, SolverSettings, Vec3,
+    math::Vec3, Fabric, GridBuilder, Interrupt, Pin, SelfCollision, Simulation, SimulationBuilder,
+    SolverSettings,
 };
 use serde::Serialize;
 use std::ops::ControlFlow;

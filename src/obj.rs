@@ -2,7 +2,7 @@
 //! temporary file beside the target, then renamed over it, so a reader (or a run stopped
 //! half-way) never sees half a file.
 
-use cloth_core::{ClothMesh, Vec3};
+use cloth_core::{math::Vec3, ClothMesh};
 use std::io::Write;
 use std::path::Path;
 

@@ -8,7 +8,7 @@ use cloth::collide::{Bodies, Body, TriSurface};
 use cloth::garment::sewing::{sew, SewingSettings, Sewn};
 use cloth::garment::{Garment, GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
-use cloth::{count_self_intersections, Interrupt, Vec3};
+use cloth::{count_self_intersections, math::Vec3, Interrupt};
 use nalgebra::Isometry3;
 use std::ops::ControlFlow;
 use std::sync::Arc;

@@ -1,7 +1,7 @@
 //! Scenes shared by the integration tests.
 #![allow(dead_code)]
 
-use cloth::{Fabric, GridBuilder, Pin, SimulationBuilder, SolverSettings, Vec3};
+use cloth::{math::Vec3, Fabric, GridBuilder, Pin, SimulationBuilder, SolverSettings};
 
 /// A square sheet of `n` x `n` particles and `size` metres hanging in the x-z plane from
 /// its two top corners (row j = 0 at z = 0, the weft pointing down).

@@ -3,7 +3,7 @@
 
 use cloth::collide::Bodies;
 use cloth::scenes::{CubeCorner, FallingPlate, Scene, SphereDrop, Tablecloth, TiltedPlane, TurningSphere};
-use cloth::{RestCriteria, Simulation, StopReason, Vec3};
+use cloth::{math::Vec3, RestCriteria, Simulation, StopReason};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 

@@ -3,8 +3,8 @@
 mod common;
 
 use cloth::{
-    DivergenceReason, Fabric, GridBuilder, Integrator, Pin, RestCriteria, SimError, SimulationBuilder,
-    SolverSettings, StopReason, Vec3,
+    math::Vec3, DivergenceReason, Fabric, GridBuilder, Integrator, Pin, RestCriteria, SimError,
+    SimulationBuilder, SolverSettings, StopReason,
 };
 use common::{max_distance, two_corner_sheet};
 use std::ops::ControlFlow;

@@ -7,7 +7,7 @@ mod common;
 
 use cloth::garment::sewing::sew;
 use cloth::scene_file::PreparedCloth;
-use cloth::{Interrupt, Vec3};
+use cloth::{math::Vec3, Interrupt};
 use std::ops::ControlFlow;
 
 /// Sews GarmentCode's rand_1_072 at 3 cm for 40 steps, its waist's attachments given to

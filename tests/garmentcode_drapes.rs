@@ -8,7 +8,7 @@ mod common;
 
 use cloth::garment::sewing::{sew, StallThen};
 use cloth::scene_file::{PreparedCloth, RunObserver, RunOutcome};
-use cloth::{Interrupt, Simulation, StepStats, Vec3};
+use cloth::{math::Vec3, Interrupt, Simulation, StepStats};
 use std::ops::ControlFlow;
 
 struct Quiet;

@@ -8,7 +8,7 @@ use cloth::garment::mannequin::{Landmarks, Mannequin, Measurements};
 use cloth::garment::sewing::{drape, sew, DrapeSettings, Draped, SewingSettings, Sewn};
 use cloth::garment::{GarmentBuilder, Pattern};
 use cloth::presets::FabricLibrary;
-use cloth::{Interrupt, StopReason, StrainReport, Vec3};
+use cloth::{math::Vec3, Interrupt, StopReason, StrainReport};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 

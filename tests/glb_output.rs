@@ -3,7 +3,7 @@
 
 use cloth::collide::TriSurface;
 use cloth::output::{write_glb, GlbCloth};
-use cloth::{ClothMesh, GridBuilder, Vec3};
+use cloth::{math::Vec3, ClothMesh, GridBuilder};
 use nalgebra::Vector2;
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! Bad input gets an error naming the element, field or particle.
 
 use cloth::{
-    ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Pin, SimulationBuilder, TensileLaw, Vec3,
+    math::Vec3, ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Pin, SimulationBuilder, TensileLaw,
 };
 use nalgebra::Vector2;
 

@@ -54,7 +54,7 @@ fn steps_do_not_allocate_alone_or_with_layers_in_contact() {
                     .settings(settings)
                     .pin(Pin::fixed(g.index(0, 19)))
                     .pin(Pin::path(g.index(19, 19), |t| {
-                        cloth::Vec3::new(0.5, 0.5 + 0.01 * t, 0.0)
+                        cloth::math::Vec3::new(0.5, 0.5 + 0.01 * t, 0.0)
                     }))
                     .build()
                     .unwrap();

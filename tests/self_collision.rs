@@ -6,7 +6,8 @@ mod common;
 
 use cloth::scenes::{FoldingStrip, Scene, SheetOntoSheet, StackedSheets};
 use cloth::{
-    ClothMesh, Fabric, GridBuilder, Pin, SelfCollision, Simulation, SimulationBuilder, SolverSettings, Vec3,
+    math::Vec3, ClothMesh, Fabric, GridBuilder, Pin, SelfCollision, Simulation, SimulationBuilder,
+    SolverSettings,
 };
 
 /// Steps `sim` `steps` times, calling `check` after every step (every step is a frame).

@@ -2,8 +2,8 @@
 
 use cloth::validation::HangingStrip;
 use cloth::{
-    Fabric, GridBuilder, Pin, RestCriteria, RestOutcome, Simulation, SimulationBuilder, SolverSettings,
-    StopReason, Vec3,
+    math::Vec3, Fabric, GridBuilder, Pin, RestCriteria, RestOutcome, Simulation, SimulationBuilder,
+    SolverSettings, StopReason,
 };
 
 /// A vertical strip pinned along its top edge: the strain at the top is the law's at the

@@ -13,7 +13,7 @@
 use super::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use crate::collide::TriSurface;
 use crate::obj::write_atomically;
-use cloth_core::{ClothMesh, Vec3};
+use cloth_core::{math::Vec3, ClothMesh};
 use gltf_json::accessor::{ComponentType, GenericComponentType, Type};
 use gltf_json::buffer::Target;
 use gltf_json::material::{PbrBaseColorFactor, PbrMetallicRoughness, StrengthFactor};

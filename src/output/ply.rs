@@ -4,7 +4,7 @@
 
 use super::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use crate::obj::write_atomically;
-use cloth_core::{ClothMesh, Vec3};
+use cloth_core::{math::Vec3, ClothMesh};
 use std::path::Path;
 
 /// Writes an ASCII PLY of the cloth with per-vertex colours and a `strain` property (%).

@@ -2,7 +2,7 @@
 //! cyan, green and yellow to red at [`FULL_SCALE_PERCENT`] and beyond, each vertex taking
 //! the mean strain of its triangles with compression shown as 0.
 
-use cloth_core::{ClothMesh, StrainReport, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, StrainReport};
 
 /// The strain at which the colour scale saturates, %.
 pub const FULL_SCALE_PERCENT: f64 = 5.0;

@@ -25,7 +25,7 @@ pub use mesh_read::{read_render_mesh, Colouring, LoadedMesh};
 pub use run::render_run;
 
 use crate::collide::TriSurface;
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// The picture sizes drawn, pixels a side: smaller has no room for the titles, larger is
 /// surely a typo.

@@ -8,7 +8,7 @@ use super::legend::Legend;
 use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
 use crate::collide::TriSurface;
 use crate::output::{strain_colour, vertex_means};
-use crate::{ClothMesh, StrainReport, Vec3};
+use crate::{math::Vec3, ClothMesh, StrainReport};
 
 /// Two panels, "warp strain" and "weft strain", each the bodies in grey and the cloth
 /// coloured per vertex by the mean strain of its triangles (compression shown as 0), with

@@ -12,7 +12,7 @@ use crate::garment::mannequin::Mannequin;
 use crate::garment::{garmentcode, Garment, GarmentBuilder, Pattern};
 use crate::presets::FabricLibrary;
 use crate::validation::{Cantilever, CusickTest};
-use cloth_core::{Fabric, GridBuilder, GridShape, Pin, SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, Fabric, GridBuilder, GridShape, Pin, SimulationBuilder};
 use std::path::Path;
 use std::sync::Arc;
 

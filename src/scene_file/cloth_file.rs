@@ -1,7 +1,7 @@
 //! A cloth read from an OBJ file: its texture coordinates are the material coordinates;
 //! a file without them must be flat and is its own rest shape.
 
-use cloth_core::{ClothMesh, Vec3};
+use cloth_core::{math::Vec3, ClothMesh};
 use nalgebra::{Isometry3, Point3, Vector2};
 use std::path::Path;
 

@@ -12,7 +12,7 @@
 
 use crate::garment::meshing::encloses;
 use cloth_collide::TriSurface;
-use cloth_core::{ClothMesh, StrainReport, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, StrainReport};
 use nalgebra::{Matrix3, Vector2};
 use serde::Serialize;
 use std::collections::HashMap;

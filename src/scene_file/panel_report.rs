@@ -91,7 +91,7 @@ fn edge_panels(mesh: &ClothMesh, triangle_panel: &[usize]) -> Vec<Vec<usize>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cloth_core::{GridBuilder, Vec3};
+    use cloth_core::{math::Vec3, GridBuilder};
 
     /// A 1 m square sheet, 5 x 5 particles, cut into a left and a right panel at x = 0.5
     /// (the triangles' panels by their centres), the right one stretched 10 % along the

@@ -6,7 +6,7 @@ use super::observer::RunObserver;
 use super::records::OutputSpec;
 use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport, StrainSummary};
 use crate::obj::write_cloth_obj_with_uv;
-use cloth_core::{ClothMesh, Simulation, StepStats, Tangle, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, Simulation, StepStats, Tangle};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

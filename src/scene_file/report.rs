@@ -2,7 +2,7 @@
 
 use super::panel_report::PanelReport;
 use crate::garment::sewing::{DrapeSettings, SewingSettings};
-use cloth_core::{ClothMesh, RestCriteria, SelfCollision, SolverSettings, StrainReport, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, RestCriteria, SelfCollision, SolverSettings, StrainReport};
 use serde::Serialize;
 
 /// What one stage did.

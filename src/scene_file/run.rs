@@ -14,8 +14,8 @@ use super::SceneFileError;
 use crate::garment::sewing::{drape, sew};
 use crate::garment::GarmentError;
 use cloth_core::{
-    body_intersections_by_edge, self_intersecting_pairs, BodyIntersections, ClothMesh, Collider, StopReason,
-    StrainReport, Vec3,
+    body_intersections_by_edge, math::Vec3, self_intersecting_pairs, BodyIntersections, ClothMesh, Collider,
+    StopReason, StrainReport,
 };
 use std::path::Path;
 use std::time::Instant;

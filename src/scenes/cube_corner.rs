@@ -1,6 +1,6 @@
 use super::{horizontal_sheet, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 
 /// A coarse sheet dropped onto a cube standing on one corner, so the top corner meets the

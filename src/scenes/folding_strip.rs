@@ -1,6 +1,6 @@
 use super::{scene_fabric, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{GridBuilder, SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, GridBuilder, SimulationBuilder};
 use nalgebra::Isometry3;
 
 /// A long strip of cloth standing on its end just above the floor, leaning, let fall: it

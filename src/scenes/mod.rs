@@ -23,7 +23,7 @@ pub use turning_sphere::TurningSphere;
 
 use crate::collide::{Bodies, Body, BodyError, SurfaceError};
 use cloth_core::{
-    ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Simulation, SimulationBuilder, Vec3,
+    math::Vec3, ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Simulation, SimulationBuilder,
 };
 use std::sync::Arc;
 

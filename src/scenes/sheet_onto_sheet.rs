@@ -1,6 +1,6 @@
 use super::{scene_fabric, two_sheets, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, SimulationBuilder};
 use nalgebra::Isometry3;
 
 /// A sheet lying on a block, and a second sheet thrown down onto it fast: it travels

@@ -1,6 +1,6 @@
 use super::{scene_fabric, two_sheets, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, SimulationBuilder};
 
 /// Two square sheets, one a little above the other and turned against it, dropped
 /// together onto a sphere: the upper one drapes over the lower.

@@ -1,6 +1,6 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
 use crate::collide::{Body, TriSurface};
-use cloth_core::{SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, SimulationBuilder};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 
 /// A sheet lying on a large plate tilted by `angle` about the x axis (downhill is -y).

@@ -1,6 +1,6 @@
 use super::{horizontal_sheet, Scene, SceneError};
 use crate::collide::{Body, Motion, TriSurface};
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Unit};
 
 /// A small sheet lying on top of a sphere that turns about the vertical axis: friction

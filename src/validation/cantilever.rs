@@ -7,7 +7,7 @@
 
 use super::elastica::elastica_tip;
 use super::{settle, ValidationError};
-use cloth_core::{Fabric, GridBuilder, GridShape, Pin, RestCriteria, SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, Fabric, GridBuilder, GridShape, Pin, RestCriteria, SimulationBuilder};
 
 /// Width of the test strip, m.
 pub const STRIP_WIDTH: f64 = 0.025;

@@ -7,7 +7,7 @@
 //! vertical projection, and the folds (nodes) from the outline of that projection.
 
 use super::{settle, ValidationError};
-use cloth_core::{Fabric, Pin, RestCriteria, SimulationBuilder, SolverSettings, Vec3};
+use cloth_core::{math::Vec3, Fabric, Pin, RestCriteria, SimulationBuilder, SolverSettings};
 use cloth_garment::meshing::{circle, triangulate_polygon};
 use nalgebra::Vector2;
 use std::f64::consts::PI;

@@ -3,7 +3,7 @@
 //! tension, whatever the law's shape.
 
 use super::{settle, ValidationError};
-use cloth_core::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder};
 
 /// A strip of `length` x `width` (m) hanging along the weft (v) from pins on its top row.
 #[derive(Debug, Clone)]

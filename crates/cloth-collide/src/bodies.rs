@@ -2,7 +2,7 @@
 
 use crate::body::Parts;
 use crate::Body;
-use cloth_core::{Collider, Proximity, SharpFeature, SurfacePoint, Vec3};
+use cloth_core::{math::Vec3, Collider, Proximity, SharpFeature, SurfacePoint};
 use nalgebra::Point3;
 
 /// The rigid bodies of a scene, answering the solver's contact queries.

@@ -6,7 +6,7 @@ use crate::layer::thinned_layer;
 use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
 use crate::thin_parts::{thin_triangles, THIN_PART};
 use crate::Motion;
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Point3};
 
 /// Default contact thickness, m: a few millimetres, about a fabric's thickness.

@@ -4,8 +4,8 @@
 
 use crate::convert::{from_parry, to_parry};
 use crate::surface::{SharpFeature as SurfaceFeature, WindingTree};
-use cloth_core::self_contact::geometry::segment_crosses_triangle;
-use cloth_core::Vec3;
+use cloth_core::math::predicates::segment_crosses_triangle;
+use cloth_core::math::Vec3;
 use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::query::{PointQuery, PointQueryWithLocation, Ray, RayCast};
 use parry3d_f64::shape::{TriMesh, TriMeshFlags, TrianglePointLocation};

@@ -1,6 +1,6 @@
 //! parry 0.31 speaks glam; the engine speaks nalgebra. Conversions happen here only.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use parry3d_f64::math::Vector;
 
 pub(crate) fn to_parry(v: &Vec3) -> Vector {

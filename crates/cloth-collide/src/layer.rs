@@ -10,7 +10,7 @@
 //! edge's length, since an edge spans more than one of the surface's), up to the body's
 //! thickness.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 /// The contact thickness at each of `vertices`, over `triangles`: `floor` plus the dip
 /// of a straight edge `edge_length` long over the surface's sharpest convex curvature

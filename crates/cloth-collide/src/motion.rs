@@ -1,6 +1,6 @@
 //! How a body moves: a pose that is a prescribed function of time.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion};
 use std::sync::Arc;
 

@@ -2,7 +2,7 @@
 //! an A pose, which GarmentCode's skirts are placed round and which cloth may pass (see
 //! `cloth_core::PassThrough`).
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 /// Where the body is thinner than this under its surface (along the inward normal), m,
 /// it may be a thin part: a hand, a forearm, an ear, under a hand's width. The trunk, the

@@ -1,7 +1,7 @@
 //! Bodies: parameter errors that name the body and the field, poses and motion.
 
 use cloth_collide::{Bodies, Body, BodyError, Motion, TriSurface};
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use cloth_core::{Collider, Proximity};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion};
 

@@ -8,7 +8,7 @@ use cloth_collide::surface::{
     SharpFeature, SurfaceDefect, SurfaceError, SurfaceOptions, TriSurface, WindingTree,
 };
 use cloth_collide::Body;
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Vector3};
 
 fn data(name: &str) -> PathBuf {

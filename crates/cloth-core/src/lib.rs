@@ -10,16 +10,18 @@
 // read better than iterator chains in the small dense element algebra.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
 
-pub mod contact;
-pub mod energy;
+// Bottom-up: each module uses only those above it.
+pub mod math;
+mod spatial;
 pub mod error;
-pub mod fabric;
-pub mod linalg;
 pub mod mesh;
+pub mod fabric;
+pub mod energy;
 pub mod metrics;
+pub mod linalg;
+pub mod contact;
 pub mod self_contact;
 pub mod solver;
-mod spatial;
 
 pub use contact::{
     body_intersections_by_edge, count_body_intersections, BodyIntersections, Collider, ContactMode,
@@ -41,7 +43,3 @@ pub use solver::{
     Constraint, ConstraintKind, Integrator, Interrupt, PcgSettings, Pin, PinMotion, RestCriteria,
     RestOutcome, SeamPull, Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
 };
-
-/// 3-vectors and 3x3 blocks used throughout the engine.
-pub type Vec3 = nalgebra::Vector3<f64>;
-pub type Mat3 = nalgebra::Matrix3<f64>;

@@ -2,8 +2,8 @@
 //! "maximum stretch between neighbouring points" on grids.
 
 use crate::energy::TriangleRest;
+use crate::math::Vec3;
 use crate::mesh::ClothMesh;
-use crate::Vec3;
 use serde::Serialize;
 
 /// Warp and weft strain of every triangle, in percent (positive = stretched).

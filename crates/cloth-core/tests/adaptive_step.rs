@@ -2,8 +2,8 @@
 //! for numerical reasons above the floor of `time_step / 2^max_halvings`.
 
 use cloth_core::{
-    DivergenceReason, Fabric, GridBuilder, Pin, RestCriteria, SimError, Simulation, SimulationBuilder,
-    SolverSettings, StopReason, Vec3,
+    math::Vec3, DivergenceReason, Fabric, GridBuilder, Pin, RestCriteria, SimError, Simulation,
+    SimulationBuilder, SolverSettings, StopReason,
 };
 use std::ops::ControlFlow;
 

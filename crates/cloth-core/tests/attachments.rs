@@ -3,7 +3,9 @@
 //! below one falls past it exactly as a free sheet does; attachments replaced during the
 //! run hold from the next step as if given at the start.
 
-use cloth_core::{Attachment, Fabric, GridBuilder, Simulation, SimulationBuilder, SolverSettings, Vec3};
+use cloth_core::{
+    math::Vec3, Attachment, Fabric, GridBuilder, Simulation, SimulationBuilder, SolverSettings,
+};
 
 /// A 20 cm square sheet, flat at z = 0, each particle attached to the plane through its
 /// start with `direction`; falls under gravity for `steps` hundredths of a second.

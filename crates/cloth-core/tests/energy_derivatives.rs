@@ -7,7 +7,7 @@ use cloth_core::energy::{
     bending, damping::add_damping, particle, shear::add_shear, stretch::add_stretch, stretch::ThreadLaw,
     HessianMode, Local, TriangleRest,
 };
-use cloth_core::{BendingLaw, TensileLaw, Vec3};
+use cloth_core::{math::Vec3, BendingLaw, TensileLaw};
 use nalgebra::{DMatrix, Rotation3, Vector2};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

@@ -1,6 +1,6 @@
 //! Cloth of several fabrics (a garment's panels): each triangle of its own.
 
-use cloth_core::{Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, Fabric, GridBuilder, Pin, RestCriteria, SimulationBuilder};
 
 /// A 1 m strip, 4 cm wide, hanging from its top row: its upper half of a stiff fabric, its
 /// lower half four times softer. With no Poisson coupling in the thread model each cell

@@ -1,8 +1,8 @@
 //! Stopping a run from outside, inside a step: the state kept is a whole step's.
 
 use cloth_core::{
-    Fabric, GridBuilder, Interrupt, Pin, RestCriteria, SimError, Simulation, SimulationBuilder,
-    SolverSettings, StopReason, Vec3,
+    math::Vec3, Fabric, GridBuilder, Interrupt, Pin, RestCriteria, SimError, Simulation, SimulationBuilder,
+    SolverSettings, StopReason,
 };
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};

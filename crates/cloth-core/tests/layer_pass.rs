@@ -3,7 +3,7 @@
 //! apart, and from then on they collide as any cloth does.
 
 use cloth_core::{
-    ClothMesh, Fabric, GridBuilder, LayerPass, Pin, Simulation, SimulationBuilder, SolverSettings, Vec3,
+    math::Vec3, ClothMesh, Fabric, GridBuilder, LayerPass, Pin, Simulation, SimulationBuilder, SolverSettings,
 };
 
 /// A square sheet of `n` x `n` particles, `size` wide, its corner at `corner`.

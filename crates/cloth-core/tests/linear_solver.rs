@@ -2,7 +2,7 @@
 //! the constraint filter.
 
 use cloth_core::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg, PcgSettings, Preconditioner};
-use cloth_core::{Mat3, Vec3};
+use cloth_core::math::{Mat3, Vec3};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Side;

@@ -6,7 +6,7 @@
 use cloth_core::linalg::{
     BlockSparse, Constraint, ConstraintKind, Filter, Multigrid, Pcg, PcgSettings, Preconditioner, Setup,
 };
-use cloth_core::{Fabric, GridBuilder, Mat3, Pin, SimulationBuilder, Vec3};
+use cloth_core::{math::Mat3, math::Vec3, Fabric, GridBuilder, Pin, SimulationBuilder};
 use nalgebra::DMatrix;
 
 /// The implicit system matrix of a `n x n` cotton sheet hanging from two corners, after

@@ -2,8 +2,8 @@
 //! to end, so that cloth trembling in place rests and cloth creeping on does not.
 
 use cloth_core::{
-    Fabric, GridBuilder, Pin, PinMotion, RestCriteria, RestOutcome, SimulationBuilder, SolverSettings,
-    StopReason, Vec3,
+    math::Vec3, Fabric, GridBuilder, Pin, PinMotion, RestCriteria, RestOutcome, SimulationBuilder,
+    SolverSettings, StopReason,
 };
 use std::ops::ControlFlow;
 use std::sync::Arc;

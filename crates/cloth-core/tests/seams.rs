@@ -1,6 +1,6 @@
 //! Meshes sewn from panels: material coordinates per triangle corner, and seam forces.
 
-use cloth_core::{ClothMesh, Fabric, GridBuilder, SeamPull, SimulationBuilder, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, Fabric, GridBuilder, SeamPull, SimulationBuilder};
 use nalgebra::{Rotation2, Vector2};
 
 /// A 6 x 5 grid cut along the column i = 3 into two panels, the right panel's material

@@ -1,7 +1,7 @@
 //! Replacing the state between steps: the positions a caller (Python, a restart) sets are
 //! the ones the next step starts from.
 
-use cloth_core::{Fabric, GridBuilder, ParamError, Pin, SimulationBuilder, SolverSettings, Vec3};
+use cloth_core::{math::Vec3, Fabric, GridBuilder, ParamError, Pin, SimulationBuilder, SolverSettings};
 
 fn sheet(pins: &[usize]) -> cloth_core::Simulation {
     let mesh = GridBuilder::new(8, 6)

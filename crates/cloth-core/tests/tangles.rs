@@ -2,8 +2,8 @@
 //! are exempt from each other until they have come apart, then collide as any cloth.
 
 use cloth_core::{
-    ClothMesh, Fabric, GridBuilder, Pin, RestCriteria, Simulation, SimulationBuilder, SolverSettings,
-    StopReason, Vec3,
+    math::Vec3, ClothMesh, Fabric, GridBuilder, Pin, RestCriteria, Simulation, SimulationBuilder,
+    SolverSettings, StopReason,
 };
 
 /// A 20 cm sheet lying at z = 0 held by its corners, and a 20 x 10 cm strip standing

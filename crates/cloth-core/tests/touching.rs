@@ -3,7 +3,7 @@
 //! given to the builder: the cloth's contact with itself does not hold the point.
 
 use cloth_core::{
-    ClothMesh, Fabric, GridBuilder, Simulation, SimulationBuilder, SolverSettings, StrainReport, Vec3,
+    math::Vec3, ClothMesh, Fabric, GridBuilder, Simulation, SimulationBuilder, SolverSettings, StrainReport,
 };
 
 /// Two 10 cm sheets in the plane z = 0 meeting at the origin, corner to corner: `a` over

@@ -4,7 +4,7 @@
 //! GarmentCode's world is y-up in cm with the body facing +z; ours is z-up in metres with
 //! the body facing -y: a point (x, y, z) there is (x, -z, y) / 100 here.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use cloth_garment::garmentcode::{from_json_str, from_path, ImportOptions};
 use cloth_garment::{Curve, GarmentBuilder, GarmentError, Panel, Pattern, PatternError, SeamOrientation};
 use nalgebra::Vector2;

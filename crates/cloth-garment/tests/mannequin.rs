@@ -187,7 +187,7 @@ fn shoulders_are_the_widest_and_the_form_stands_at_its_height() {
         // Centred on the z axis, facing -y: the front-most point is the bust, the back-most
         // the seat.
         assert!((hi.x + lo.x).abs() < 1e-9);
-        let by_y = |a: &&cloth_core::Vec3, b: &&cloth_core::Vec3| a.y.total_cmp(&b.y);
+        let by_y = |a: &&cloth_core::math::Vec3, b: &&cloth_core::math::Vec3| a.y.total_cmp(&b.y);
         let front = torso.vertices().iter().min_by(by_y).map_or(f64::NAN, |p| p.z);
         let back = torso.vertices().iter().max_by(by_y).map_or(f64::NAN, |p| p.z);
         assert!(

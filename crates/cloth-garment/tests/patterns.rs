@@ -85,7 +85,7 @@ fn a_pattern_meshes_with_seams_paired_one_to_one() {
     // front (a line, then a half circle back counter-clockwise).
     let front = |t: usize| garment.triangle_panel[t] == 0;
     for (t, tri) in mesh.triangles().iter().enumerate().filter(|(t, _)| front(*t)) {
-        let c = tri.iter().map(|&i| x[i]).sum::<cloth_core::Vec3>() / 3.0;
+        let c = tri.iter().map(|&i| x[i]).sum::<cloth_core::math::Vec3>() / 3.0;
         let in_hole = c.z > 0.6 && (c.x.powi(2) + (c.z - 0.6).powi(2)).sqrt() < 0.029;
         assert!(!in_hole, "triangle {t} in the hole");
     }
@@ -324,7 +324,7 @@ fn a_panel_starting_inside_the_body_is_moved_out_whole() {
     assert_eq!(deepest, 0.0);
     // Moved whole: every particle by the same vector, the front's along its outward
     // normal, the back's not at all.
-    let shifts: Vec<cloth_core::Vec3> = garment
+    let shifts: Vec<cloth_core::math::Vec3> = garment
         .mesh
         .positions()
         .iter()
@@ -362,7 +362,7 @@ outline = [
     // 15 degrees a segment: 12 segments on the half circle, where its 9.4 cm alone
     // would give 2.
     // (Placed with the default placement, at its 2D coordinates in the z = 0 plane.)
-    let from_centre = |p: &cloth_core::Vec3| (p.x.powi(2) + (p.y - 0.3).powi(2)).sqrt();
+    let from_centre = |p: &cloth_core::math::Vec3| (p.x.powi(2) + (p.y - 0.3).powi(2)).sqrt();
     let on_notch = mesh
         .positions()
         .iter()
@@ -450,7 +450,7 @@ fn a_panel_through_a_thin_part_of_the_body_passes_through_it_instead() {
     let mut parts = mannequin.bodies();
     let hand = Body::new(
         "hand",
-        TriSurface::cuboid(cloth_core::Vec3::new(0.04, 0.015, 0.08)).unwrap(),
+        TriSurface::cuboid(cloth_core::math::Vec3::new(0.04, 0.015, 0.08)).unwrap(),
     )
     .with_pose(Isometry3::from_parts(
         Translation3::new(0.0, -0.17, 0.6),
@@ -521,8 +521,8 @@ b = { panel = "lower", edge = 2 }
         for &i in tri {
             let shift = garment.mesh.positions()[i] - before[i];
             let expected = match garment.triangle_panel[t] {
-                1 => cloth_core::Vec3::new(0.0, 0.002, 0.0),
-                _ => cloth_core::Vec3::zeros(),
+                1 => cloth_core::math::Vec3::new(0.0, 0.002, 0.0),
+                _ => cloth_core::math::Vec3::zeros(),
             };
             assert!(
                 (shift - expected).norm() < 1e-12,
@@ -574,7 +574,7 @@ b = { panel = "top", edge = 0 }
     assert_eq!(garment.touching.len(), 1);
     let [i, j] = garment.touching[0];
     let x = garment.mesh.positions();
-    let corner = cloth_core::Vec3::new(0.0, -0.2, 0.8);
+    let corner = cloth_core::math::Vec3::new(0.0, -0.2, 0.8);
     assert!(
         (x[i] - corner).norm() < 1e-9 && (x[j] - corner).norm() < 1e-9,
         "{:?} {:?}",
@@ -596,7 +596,7 @@ b = { panel = "top", edge = 0 }
     let right: Vec<usize> = (0..x.len()).filter(|&p| panel_of(p) == 1).collect();
     apart
         .mesh
-        .translate_vertices(&right, cloth_core::Vec3::new(0.01, 0.0, 0.0));
+        .translate_vertices(&right, cloth_core::math::Vec3::new(0.01, 0.0, 0.0));
     assert!(apart.find_touching().is_empty());
     assert!(apart.touching.is_empty());
 }
@@ -613,7 +613,7 @@ direction = [0, 0, 2]
     assert_eq!(pattern.attachments.len(), 1);
     let a = &pattern.attachments[0];
     assert_eq!((a.edge.panel, a.edge.edge), (1, 2));
-    assert_eq!(a.direction, cloth_core::Vec3::z(), "normalised");
+    assert_eq!(a.direction, cloth_core::math::Vec3::z(), "normalised");
     for (bad, says) in [
         (
             extra.replace("\"top\"", "\"waist\""),

@@ -2,7 +2,7 @@
 //! but must hold real numbers of the right shape; errors name the argument. Outputs are
 //! fresh arrays the caller owns.
 
-use cloth::Vec3;
+use cloth::math::Vec3;
 use nalgebra::Vector2;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};

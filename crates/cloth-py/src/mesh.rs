@@ -2,7 +2,7 @@
 
 use crate::arrays::{index_array, indices, numbers, plane_points, point, points, vec2_array, vec3_array};
 use crate::errors::input;
-use cloth::{GridBuilder, Vec3};
+use cloth::{math::Vec3, GridBuilder};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use std::path::PathBuf;

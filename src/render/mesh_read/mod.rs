@@ -5,7 +5,7 @@ mod ply;
 
 use super::error::RenderError;
 use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
-use crate::Vec3;
+use crate::math::Vec3;
 use std::path::Path;
 
 /// Where a read mesh's colours came from.
@@ -120,7 +120,7 @@ mod tests {
         assert!(loaded.wants_legend());
         // A quad is two triangles sharing its first corner.
         assert_eq!(loaded.mesh.triangles, vec![[0, 1, 2], [0, 2, 3]]);
-        assert_eq!(loaded.mesh.positions[2], crate::Vec3::new(1.0, 0.0, 1.0));
+        assert_eq!(loaded.mesh.positions[2], crate::math::Vec3::new(1.0, 0.0, 1.0));
         let full = crate::output::FULL_SCALE_PERCENT;
         let expected: Vec<[u8; 3]> = [0.0, 2.5, 5.0, 7.0]
             .iter()
@@ -163,8 +163,8 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
         let file = ScratchFile::new("binary.ply", &bytes);
         let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::Plain);
-        assert_eq!(loaded.mesh.positions[1], crate::Vec3::new(2.0, 0.0, 0.0));
-        assert_eq!(loaded.mesh.positions[2], crate::Vec3::new(0.0, 0.0, 3.0));
+        assert_eq!(loaded.mesh.positions[1], crate::math::Vec3::new(2.0, 0.0, 0.0));
+        assert_eq!(loaded.mesh.positions[2], crate::math::Vec3::new(0.0, 0.0, 3.0));
         assert_eq!(loaded.mesh.triangles, vec![[0, 1, 2]]);
     }
 

@@ -5,9 +5,9 @@
 
 use super::{Colouring, LoadedMesh};
 use crate::collide::surface::ply_number;
+use crate::math::Vec3;
 use crate::output::strain_colour;
 use crate::render::error::RenderError;
-use crate::Vec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Property, PropertyType};
 use std::path::Path;

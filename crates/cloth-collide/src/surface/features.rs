@@ -1,6 +1,6 @@
 //! Sharp edges and corners: where a smooth-surface contact normal would be wrong.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 use super::edges::{edge_groups, sorted_sides};
 use super::TriSurface;

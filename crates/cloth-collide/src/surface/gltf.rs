@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use gltf::mesh::Mode;
 use nalgebra::{Matrix4, Point3};
 

@@ -1,6 +1,6 @@
 //! Measures of a surface and the operations that keep it valid: rigid motion and union.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Point3};
 
 use super::TriSurface;

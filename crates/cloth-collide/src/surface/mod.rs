@@ -20,7 +20,7 @@ mod stl;
 mod weld;
 mod winding;
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 pub use defects::SurfaceDefect;
 pub use error::SurfaceError;

@@ -3,7 +3,7 @@
 //! outside, so the triangles lying inside other parts are found here and kept out of
 //! contact.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use rayon::prelude::*;
 
 use super::winding::WindingTree;

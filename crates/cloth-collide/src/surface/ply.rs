@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Property};
 

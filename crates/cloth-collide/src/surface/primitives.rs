@@ -2,7 +2,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::Isometry3;
 
 use super::{SurfaceError, SurfaceOptions, TriSurface};

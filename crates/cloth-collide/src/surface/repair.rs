@@ -1,7 +1,7 @@
 //! Building a surface from a mesh as users have it: refused only when it can have no
 //! inside at all, otherwise repaired where that is sound and described where it is not.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 use super::defects::SurfaceDefect;
 use super::edges::{edge_groups, sorted_sides, Side};

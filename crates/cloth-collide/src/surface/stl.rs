@@ -3,7 +3,7 @@
 use std::io::Cursor;
 use std::path::Path;
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 use super::io::read_bytes;
 use super::{SurfaceError, SurfaceOptions, TriSurface};

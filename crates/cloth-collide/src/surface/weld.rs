@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 use super::edges::{edge_groups, sorted_sides};
 

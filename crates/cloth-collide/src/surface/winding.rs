@@ -14,7 +14,7 @@
 //! expansion, tried, made the answer worse at these distances, where the series converges
 //! slowly: on a sphere with a hole the largest error went from 0.026 to 0.070.)
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 /// Clusters this many of their radii away are summed as dipoles. At 2 the error stays
 /// under 0.03 of a winding number, far from the 1/2 that decides inside (the tests compare

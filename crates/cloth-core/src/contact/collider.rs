@@ -1,7 +1,7 @@
 //! The interface through which the solver sees rigid bodies. cloth-core knows nothing of
 //! how a body is stored or queried; cloth-collide implements this on parry.
 
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// The body surface nearest a particle at the end of a motion.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,7 +115,7 @@ pub trait Collider: Send + Sync + std::fmt::Debug {
     fn sharp_features(&self, t: f64, out: &mut Vec<SharpFeature>);
 
     /// How many body triangles the segment from `a` to `b` passes through at time `t`,
-    /// each decided by [`crate::self_contact::geometry::segment_crosses_triangle`], as the
+    /// each decided by [`crate::math::predicates::segment_crosses_triangle`], as the
     /// cloth's own intersections are.
     fn segment_crossings(&self, t: f64, a: &Vec3, b: &Vec3) -> usize;
 

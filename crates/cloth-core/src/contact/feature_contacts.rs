@@ -11,8 +11,8 @@
 use super::particle_contacts::SLIP_SPEED;
 use super::SharpFeature;
 use crate::linalg::BlockSparse;
+use crate::math::{Mat3, Vec3};
 use crate::spatial::{Aabb, Bvh};
-use crate::{Mat3, Vec3};
 
 /// Features within `(1 + BAND)` thicknesses of a triangle are in contact.
 const BAND: f64 = 0.5;

@@ -1,15 +1,15 @@
 //! Contact of the cloth with rigid bodies, reached through the [`Collider`] trait.
 
 mod collider;
-mod feature_contacts;
 mod particle_contacts;
+mod feature_contacts;
 
 pub use collider::{Collider, Proximity, SharpFeature, SurfacePoint};
 pub(crate) use particle_contacts::ParticleContacts;
 pub use particle_contacts::{ContactMode, PassThrough, SLIP_SPEED};
 
+use crate::math::Vec3;
 use crate::mesh::ClothMesh;
-use crate::Vec3;
 use std::sync::Arc;
 
 /// The cloth's edges through the bodies' triangles, counted edge-triangle pair by pair as

@@ -4,7 +4,7 @@
 
 use super::{Collider, Proximity, SurfacePoint};
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter};
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 use rayon::prelude::*;
 
 /// A particle closer to the surface than `(1 + CONTACT_BAND) * thickness` is in contact.

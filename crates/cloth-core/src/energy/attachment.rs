@@ -7,7 +7,7 @@
 //! are a penalty in the energy, so the implicit step sees them coming like any spring.
 
 use super::Local;
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// A particle kept on the side of the plane through `point` that `direction` points to:
 /// it moves along `direction` freely, and against it no further than `point`.

@@ -15,8 +15,8 @@
 
 use super::{HessianMode, Local};
 use crate::fabric::{BendingLaw, BendingRigidity};
+use crate::math::{Mat3, Vec3};
 use crate::mesh::{ClothMesh, Hinge};
-use crate::{Mat3, Vec3};
 
 /// Signed bend angle of a hinge with its gradient (and Hessian) over (x0, x1, x2, x3).
 pub struct Dihedral {

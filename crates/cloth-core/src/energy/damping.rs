@@ -3,7 +3,7 @@
 //! rigid motion (which K maps to zero).
 
 use super::Local;
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// Adds `-beta H v` to `force` and `H v` to `hv` for one element.
 #[inline]

@@ -5,18 +5,18 @@
 //! is either the exact one (checked against finite differences in the tests) or the
 //! positive semi-definite form the implicit solver needs, selected by [`HessianMode`].
 
-pub mod attachment;
-pub mod bending;
-pub mod damping;
 pub mod particle;
-pub mod repulsion;
-pub mod shear;
-pub mod stretch;
+pub mod damping;
 mod triangle_rest;
+pub mod stretch;
+pub mod shear;
+pub mod bending;
+pub mod attachment;
+pub mod repulsion;
 
 pub use triangle_rest::TriangleRest;
 
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 /// Which Hessian an element returns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,6 +1,6 @@
 //! Per-particle forces: gravity and viscous air drag.
 
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// Gravity: `E = -m g.x`, `F = m g`, no Jacobian.
 #[inline]

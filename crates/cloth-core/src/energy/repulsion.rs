@@ -9,7 +9,7 @@
 //! exact for the step's linearisation and convex.
 
 use super::Local;
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 /// The four particles' weighting of one contact and its normal, held for a step.
 #[derive(Debug, Clone, Copy, PartialEq)]

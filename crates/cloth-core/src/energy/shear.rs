@@ -9,7 +9,7 @@
 //! (`E_cc > 0`), which is all of it at zero shear.
 
 use super::{HessianMode, Local, TriangleRest};
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 /// Adds the shear energy of one triangle with shear rigidity `modulus` (N/m per radian).
 pub fn add_shear(rest: &TriangleRest, modulus: f64, x: &[Vec3; 3], mode: HessianMode, out: &mut Local<3>) {

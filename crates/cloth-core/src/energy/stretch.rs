@@ -8,7 +8,7 @@
 
 use super::{HessianMode, Local, TriangleRest};
 use crate::fabric::{Fabric, TensileLaw, TensileResponse};
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 /// Tension response of one thread direction, with its compression stiffness.
 #[derive(Debug, Clone, Copy)]

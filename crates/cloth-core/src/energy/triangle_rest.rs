@@ -1,6 +1,6 @@
 //! The constant map from a triangle's vertex positions to its deformation gradient.
 
-use crate::Vec3;
+use crate::math::Vec3;
 use nalgebra::Vector2;
 
 /// For a triangle with rest material coordinates `uv`, the deformation gradient

@@ -2,10 +2,10 @@
 //! Kawabata (KES-F) records and the source paper's coefficients.
 
 mod bending_params;
-pub mod kes;
-mod parameters;
 mod source_coefficients;
 mod tensile_law;
+mod parameters;
+pub mod kes;
 
 pub use bending_params::{BendingLaw, BendingRigidity};
 pub use kes::{KesConversion, KesDirection, KesMeasurement, UnusedKes};

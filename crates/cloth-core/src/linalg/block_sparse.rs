@@ -8,7 +8,7 @@
 
 use super::row_chunks::{for_each_entry, for_each_row};
 use super::transient::Transient;
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 /// The default is a matrix of no rows, for a pattern to be set into
 /// ([`BlockSparse::set_pattern`]).

@@ -6,7 +6,7 @@
 //! the same assembled matrix serves a re-solve with fewer constraints and the reaction
 //! forces of the constrained rows.
 
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 /// Which directions of a particle's velocity a constraint prescribes.
 #[derive(Debug, Clone, Copy, PartialEq)]

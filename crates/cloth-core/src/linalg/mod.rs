@@ -2,15 +2,16 @@
 //! constraint filter, preconditioned conjugate gradients on faer, and the multigrid
 //! preconditioner.
 
-mod block_sparse;
+mod row_chunks;
 mod filter;
+mod transient;
+mod block_sparse;
+mod diagonal_inverse;
 mod multigrid;
 mod pcg;
-mod row_chunks;
-mod transient;
 
 pub use block_sparse::BlockSparse;
+pub(crate) use diagonal_inverse::inverse_diagonal;
 pub use filter::{Constraint, ConstraintKind, Filter};
 pub use multigrid::Multigrid;
-pub(crate) use pcg::inverse_diagonal;
 pub use pcg::{Pcg, PcgOutcome, PcgSettings, Preconditioner, Setup};

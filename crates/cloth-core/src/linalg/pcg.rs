@@ -3,9 +3,9 @@
 //! block-Jacobi preconditioner. All scratch is allocated by the first solve (and again
 //! only if the matrix's pattern changes).
 
-use super::row_chunks::for_each_entry;
+use super::diagonal_inverse::inverse_diagonal;
 use super::{BlockSparse, Filter, Multigrid};
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::matrix_free::conjugate_gradient::{
     conjugate_gradient, conjugate_gradient_scratch, CgError, CgInfo, CgParams,
@@ -13,7 +13,6 @@ use faer::matrix_free::conjugate_gradient::{
 use faer::matrix_free::{LinOp, Precond};
 use faer::{Mat, MatMut, MatRef, Par};
 use serde::{Deserialize, Serialize};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// What preconditions the conjugate gradients.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -128,47 +127,6 @@ fn block_jacobi(inv: &[Mat3]) -> BlockMap<impl Fn(&[Vec3], &mut [Vec3]) + Sync +
             }
         },
     }
-}
-
-/// The inverses of the diagonal blocks of `a`, filtered by `filter` if given, or the
-/// first block that is not positive definite.
-pub(crate) fn inverse_diagonal(
-    a: &BlockSparse,
-    filter: Option<&Filter>,
-    out: &mut [Mat3],
-    parallel: bool,
-) -> Result<(), usize> {
-    let failed = AtomicUsize::new(usize::MAX);
-    for_each_entry(out, parallel, |r, inv| {
-        let d = a.smoother_diagonal(r);
-        let d = filter.map_or(d, |f| f.filtered_diagonal(r, &d));
-        match spd_inverse(&d) {
-            Some(i) => *inv = i,
-            None => {
-                failed.fetch_min(r, Ordering::Relaxed);
-            }
-        }
-    });
-    match failed.into_inner() {
-        usize::MAX => Ok(()),
-        r => Err(r),
-    }
-}
-
-/// The inverse of a symmetric 3x3 block by its adjugate, if the block is positive
-/// definite (all leading minors positive); several times cheaper than a factorisation,
-/// and the blocks (mass plus stiffness) are far from singular.
-fn spd_inverse(d: &Mat3) -> Option<Mat3> {
-    let (a, b, c) = (d[(0, 0)], d[(0, 1)], d[(0, 2)]);
-    let (e, f, i) = (d[(1, 1)], d[(1, 2)], d[(2, 2)]);
-    let (c00, c01, c02) = (e * i - f * f, c * f - b * i, b * f - c * e);
-    let minor = a * e - b * b;
-    let det = a * c00 + b * c01 + c * c02;
-    if !(a > 0.0 && minor > 0.0 && det > 0.0) {
-        return None;
-    }
-    let (c11, c12, c22) = (a * i - c * c, b * c - a * f, minor);
-    Some(Mat3::new(c00, c01, c02, c01, c11, c12, c02, c12, c22) / det)
 }
 
 /// Whether conjugate gradients found the operator or the preconditioner not definite.
@@ -466,34 +424,6 @@ mod tests {
         for (k, (x, d)) in blocks(sol.as_ref()).iter().zip(&diagonal).enumerate() {
             let expected = Vec3::new(b[3 * k], b[3 * k + 1], b[3 * k + 2]);
             assert!((d * x - expected).norm() < 1e-9, "block {k}");
-        }
-    }
-
-    #[test]
-    fn spd_inverse_inverts_definite_blocks_and_refuses_the_rest() {
-        let blocks = [
-            Mat3::new(4.0, 1.0, 0.5, 1.0, 3.0, -0.2, 0.5, -0.2, 2.0),
-            // Mass plus a stiff stretch along one direction, as in the cloth's rows.
-            Mat3::from_diagonal_element(1e-5)
-                + 2e-1 * Vec3::new(0.6, 0.8, 0.0) * Vec3::new(0.6, 0.8, 0.0).transpose(),
-        ];
-        for d in blocks {
-            let inv = spd_inverse(&d).expect("positive definite");
-            let reference = d.cholesky().expect("positive definite").inverse();
-            let error = (inv - reference).norm() / reference.norm();
-            // Both are backward stable: they agree to rounding times the condition number.
-            let eigenvalues = d.symmetric_eigenvalues();
-            let condition = eigenvalues.max() / eigenvalues.min();
-            assert!(error < 1e-15 * condition, "{error:e} at condition {condition:e}");
-        }
-        for d in [
-            Mat3::from_diagonal(&Vec3::new(1.0, 1.0, 0.0)),
-            Mat3::from_diagonal(&Vec3::new(1.0, 1.0, -1.0)),
-            Mat3::from_diagonal(&Vec3::new(1.0, -1.0, -1.0)),
-            Mat3::from_diagonal(&Vec3::new(-1.0, 1.0, 1.0)),
-            Mat3::new(1.0, 2.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        ] {
-            assert_eq!(spd_inverse(&d), None, "{d}");
         }
     }
 }

@@ -5,7 +5,7 @@
 //! rows (sorted by row and column, duplicates summed) for the products and for folding
 //! into a pattern that holds them (see `linalg::multigrid::folded`). Every buffer is reused.
 
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 #[derive(Debug, Clone, Default)]
 pub(super) struct Transient {

@@ -1,28 +1,11 @@
 //! The validated cloth mesh.
 
+use super::grid_shape::GridShape;
 use super::topology::{edges_and_hinges, Hinge};
 
 use crate::error::MeshError;
-use crate::Vec3;
+use crate::math::Vec3;
 use nalgebra::Vector2;
-
-/// Shape of a regular warp/weft grid: vertex `j * nx + i` sits at thread crossing (i, j),
-/// `i` counting along the warp (u), `j` along the weft (v).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GridShape {
-    pub nx: usize,
-    pub ny: usize,
-    /// Spacing along the warp and the weft, m.
-    pub du: f64,
-    pub dv: f64,
-    pub diagonals: super::GridDiagonals,
-}
-
-impl GridShape {
-    pub fn index(&self, i: usize, j: usize) -> usize {
-        j * self.nx + i
-    }
-}
 
 /// A triangle mesh whose vertices carry 3D positions and 2D material coordinates
 /// `(u, v)` in metres (u along the warp, v along the weft). The material

@@ -1,20 +1,10 @@
 //! A rectangular warp/weft grid: the source's particles at thread crossings.
 
-use super::cloth_mesh::{ClothMesh, GridShape};
+use super::cloth_mesh::ClothMesh;
+use super::grid_shape::{GridDiagonals, GridShape};
 use crate::error::MeshError;
-use crate::Vec3;
+use crate::math::Vec3;
 use nalgebra::Vector2;
-
-/// How each grid cell is split into two triangles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum GridDiagonals {
-    /// Every cell split along the same diagonal.
-    Uniform,
-    /// Diagonals alternate in a checkerboard, so the mesh has the square's mirror symmetries.
-    #[default]
-    Alternating,
-}
 
 /// Builds a grid of `nx` x `ny` particles. Material coordinates are `(i du, j dv)`;
 /// the 3D sheet lies in the plane spanned by `u_axis` and `v_axis` from `origin`.

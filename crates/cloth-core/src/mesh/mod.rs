@@ -1,11 +1,13 @@
 //! Cloth meshes: triangles with material (warp, weft) coordinates, and their hinges.
 
+mod topology;
+mod grid_shape;
 mod cloth_mesh;
 mod grid;
 mod rings;
-mod topology;
 
-pub use cloth_mesh::{ClothMesh, GridShape};
-pub use grid::{GridBuilder, GridDiagonals};
+pub use cloth_mesh::ClothMesh;
+pub use grid::GridBuilder;
+pub use grid_shape::{GridDiagonals, GridShape};
 pub use rings::{components, within_rings, Neighbours};
 pub use topology::Hinge;

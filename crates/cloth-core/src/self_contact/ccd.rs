@@ -5,8 +5,8 @@
 //! cross but ends the step closer than [`MIN_SEPARATION`] of its contact distance, having
 //! closed in, is an impact too: layers keep at least that apart at every step's end.
 
-use super::geometry::{closest_on_segments, closest_on_triangle};
-use crate::Vec3;
+use crate::math::predicates::{closest_on_segments, closest_on_triangle};
+use crate::math::Vec3;
 
 /// Fraction of its contact distance at which a pair that passed through is left: inside
 /// the distance, so the next step's repulsion takes hold of it rather than the pair falling

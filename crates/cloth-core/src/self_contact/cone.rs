@@ -3,7 +3,7 @@
 //! which cannot fold onto itself (Volino & Magnenat-Thalmann 1994; Provot 1997): the
 //! search for the cloth's contacts with itself skips such a patch against itself.
 
-use crate::Vec3;
+use crate::math::Vec3;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Half-angle below which a connected patch counts as flat: a right angle less a margin

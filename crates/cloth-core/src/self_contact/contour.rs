@@ -8,8 +8,8 @@
 //! step, with every point moving straight, the test holds at every instant of it.
 
 use super::topology::Topology;
+use crate::math::Vec3;
 use crate::spatial::Bvh;
-use crate::Vec3;
 use std::f64::consts::TAU;
 
 /// The positions at the start and the end of a step (the same for one instant).

@@ -3,11 +3,11 @@
 //! triangle, pairs sharing a particle (or seam partners) exempt. The count is zero for
 //! cloth that has never passed through itself.
 
-use super::geometry::{closest_on_triangle, segment_crosses_triangle};
 use super::topology::Topology;
+use crate::math::predicates::{closest_on_triangle, segment_crosses_triangle};
+use crate::math::Vec3;
 use crate::mesh::ClothMesh;
 use crate::spatial::{Aabb, Bvh};
-use crate::Vec3;
 use rayon::prelude::*;
 
 /// How many edge-triangle pairs intersect, and the first (edge, triangle) of them.

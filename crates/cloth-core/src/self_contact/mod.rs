@@ -21,18 +21,17 @@
 //! Exempt are pairs with shared or neighbouring particles (the particles a seam pulls
 //! together counting as one until welded) and pairs near in the flat cloth (`topology`).
 
-mod ccd;
+mod settings;
+mod layer_pass;
 mod chunks;
 mod cone;
-mod contour;
-pub mod geometry;
-mod intersections;
-mod layer_pass;
-mod proximity;
-mod response;
-mod settings;
-mod surface;
 mod topology;
+mod contour;
+mod ccd;
+mod intersections;
+mod proximity;
+mod surface;
+mod response;
 mod untangling;
 
 pub use intersections::{
@@ -61,9 +60,9 @@ use crate::contact::SLIP_SPEED;
 use crate::energy::repulsion::{add_friction_drag, add_repulsion, RepulsionLaw};
 use crate::energy::Local;
 use crate::linalg::BlockSparse;
+use crate::math::{Mat3, Vec3};
 use crate::mesh::ClothMesh;
 use crate::spatial::Aabb;
-use crate::{Mat3, Vec3};
 use ccd::Impact;
 use chunks::ChunkedSearch;
 use cone::Cone;

@@ -2,11 +2,11 @@
 //! contact distance at the start of a step, or closing in fast enough to come that close
 //! within it, each a [`Contact`] the step's solve holds at the distance.
 
-use super::geometry::{closest_on_segments, closest_on_triangle, triangle_normal};
 use super::topology::Topology;
 use crate::energy::repulsion::ContactFrame;
+use crate::math::predicates::{closest_on_segments, closest_on_triangle, triangle_normal};
+use crate::math::Vec3;
 use crate::spatial::Aabb;
-use crate::Vec3;
 
 /// A pair of the cloth in contact with itself for one step.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -8,8 +8,8 @@ use super::contour::Motion;
 use super::surface::Search;
 use super::topology::find;
 use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
+use crate::math::Vec3;
 use crate::spatial::Aabb;
-use crate::Vec3;
 
 /// What the impact passes did in one step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -10,8 +10,8 @@
 use super::cone::Cone;
 use super::contour::{outer, star_shaped, Contours, Motion};
 use super::topology::{find, Topology};
+use crate::math::Vec3;
 use crate::spatial::{Aabb, Bvh};
-use crate::Vec3;
 
 /// Node pairs a search is split into, for the threads.
 const TASKS: usize = 256;

@@ -10,9 +10,9 @@
 //! radius would be in contact unfolded. Cloth cannot fold through itself over less than
 //! its own thickness, nor within one cell without folding its cells flat.
 
-use super::geometry::{closest_on_segments, closest_on_triangle, segment_crosses_triangle};
+use crate::math::predicates::{closest_on_segments, closest_on_triangle, segment_crosses_triangle};
+use crate::math::Vec3;
 use crate::mesh::{within_rings, ClothMesh};
-use crate::Vec3;
 use nalgebra::Vector2;
 
 /// Bit of [`Topology::owns`] for vertex `k` of a triangle.

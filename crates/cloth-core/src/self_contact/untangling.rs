@@ -21,7 +21,7 @@
 
 use super::intersections::crossing_pairs;
 use super::topology::Topology;
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// A point of the curve: the crossing of an edge through a triangle.
 struct Point {

@@ -17,8 +17,8 @@ use crate::energy::{
 };
 use crate::fabric::{BendingLaw, Fabric};
 use crate::linalg::BlockSparse;
+use crate::math::{Mat3, Vec3};
 use crate::mesh::ClothMesh;
-use crate::{Mat3, Vec3};
 use rayon::prelude::*;
 use std::ops::Range;
 

@@ -5,7 +5,7 @@
 use super::assembly::StiffnessTarget;
 use super::{Simulation, StepStats};
 use crate::linalg::{BlockSparse, Setup};
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 use std::time::Instant;
 
 impl Simulation {

@@ -1,14 +1,14 @@
 //! The simulation: state, integrators, pins and the stopping mechanism.
 
-mod assembly;
-mod explicit;
-mod implicit;
+mod settings;
 mod interrupt;
 mod pins;
-mod rest;
-mod settings;
-mod simulation;
 mod stats;
+mod assembly;
+mod rest;
+mod simulation;
+mod explicit;
+mod implicit;
 
 pub use crate::linalg::{Constraint, ConstraintKind, PcgSettings};
 pub use assembly::SeamPull;

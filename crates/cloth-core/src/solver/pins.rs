@@ -1,6 +1,6 @@
 //! Pinned particles: held in place, or moved along a prescribed path.
 
-use crate::Vec3;
+use crate::math::Vec3;
 use std::sync::Arc;
 
 /// How a pinned particle moves.

@@ -2,8 +2,8 @@
 
 use crate::error::ParamError;
 use crate::linalg::PcgSettings;
+use crate::math::Vec3;
 use crate::self_contact::SelfCollision;
-use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
 /// Time integration scheme.

@@ -4,7 +4,7 @@
 //! each other at the start stay near each other however the cloth folds or the body moves:
 //! refitting keeps the tree useful without rebuilding.
 
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// Primitives per leaf at most.
 const LEAF_SIZE: usize = 4;

@@ -6,7 +6,7 @@
 //! into place with the cloth's collision with itself on from the first step.
 
 use super::Garment;
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::Vector2;
 
 /// Panels whose normals are within this of each other (cosine) are parallel.

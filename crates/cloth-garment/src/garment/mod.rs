@@ -20,7 +20,7 @@ pub use weld::Welded;
 
 use crate::meshing::mesh_region;
 use crate::pattern::{BodyPart, Edge, Pattern, SeamOrientation};
-use cloth_core::{ClothMesh, PassThrough, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, PassThrough};
 use nalgebra::Rotation2;
 
 /// The default target edge length, m: about 6,000 particles for a dress.

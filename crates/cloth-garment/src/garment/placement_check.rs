@@ -11,7 +11,7 @@
 
 use super::Garment;
 use cloth_collide::Bodies;
-use cloth_core::{PassThrough, Vec3};
+use cloth_core::{math::Vec3, PassThrough};
 
 /// A panel that starts (partly) inside a body, with the fix.
 #[derive(Debug, Clone, PartialEq)]

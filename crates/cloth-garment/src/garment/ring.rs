@@ -13,7 +13,7 @@
 //! seams it crossed.
 
 use super::Garment;
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -191,7 +191,7 @@ impl Ways {
 mod tests {
     use crate::garment::GarmentBuilder;
     use crate::pattern::Pattern;
-    use cloth_core::Vec3;
+    use cloth_core::math::Vec3;
 
     /// Two 10 x 20 cm panels, the front at z = +r and the back at z = -r (m), both from x
     /// = -5 to 5 cm and y = 0 to 20 cm: seam 0 joins their sides at x = -5 cm, seam 1 at

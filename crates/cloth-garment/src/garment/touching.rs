@@ -7,7 +7,7 @@
 //! `cloth_core::SimulationBuilder::touching`).
 
 use super::Garment;
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use std::collections::HashMap;
 
 /// Particles of different panels nearer than this touch, m. GarmentCode's touching corners

@@ -1,7 +1,7 @@
 //! Welding sewn seams: each group of paired vertices becomes one particle.
 
 use super::{Garment, GarmentError};
-use cloth_core::{ClothMesh, Vec3};
+use cloth_core::{math::Vec3, ClothMesh};
 
 /// The garment's mesh after welding, and where each unsewn vertex went.
 #[derive(Debug, Clone)]

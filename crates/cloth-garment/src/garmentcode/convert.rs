@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 
 use crate::pattern::{AttachedEdge, Pattern, PatternError, Seam, SeamOrientation, SeamSide};
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 use super::panel::{panel, Frame};
 use super::schema::{CurvatureCoords, PanelRecord, Spec, Stitch};

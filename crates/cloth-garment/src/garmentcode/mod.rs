@@ -40,7 +40,7 @@ mod schema;
 use std::path::Path;
 
 use crate::pattern::{Pattern, PatternError};
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 /// How a GarmentCode file is placed in our world.
 ///

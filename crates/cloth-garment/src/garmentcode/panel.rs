@@ -2,7 +2,7 @@
 //! and its placement moved from GarmentCode's world into ours.
 
 use crate::pattern::{BodyPart, Curve, Edge, Panel, PatternError, Placement, Point2};
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 
 use super::curvature;

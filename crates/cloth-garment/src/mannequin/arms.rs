@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use serde::{Deserialize, Serialize};
 
 use super::loft::{Cap, Loft};

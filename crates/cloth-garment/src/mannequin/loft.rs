@@ -1,7 +1,7 @@
 //! Closed tubes from stacked rings: the torso and the arms are both a stack of rings along
 //! an axis, rounded off at each end by a dome and closed by a fan to a pole.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 use super::arclength::equal_steps;
 

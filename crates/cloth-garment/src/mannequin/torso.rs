@@ -7,7 +7,7 @@
 //! seat 0.68 with more of it behind, a bust 0.80 with more of it in front, a broad and
 //! shallow section across the shoulder points. Their size comes from the measurements.
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 
 use super::arclength::{cumulative, equal_steps};
 use super::loft::{Cap, Loft};

@@ -5,7 +5,7 @@
 //! kept as they are: the boundary then has the interior's resolution, and a seam's
 //! vertices are exactly the points the seam was resampled at.
 
-use cloth_core::{ClothMesh, MeshError, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, MeshError};
 use nalgebra::Vector2;
 use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
 use std::collections::HashMap;

@@ -16,7 +16,7 @@ pub use error::PatternError;
 pub use gather::{Gather, EASE, MAX_GATHER, SMALL_EXCESS};
 pub use placement::{Placement, Wrap};
 
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::Vector2;
 
 pub type Point2 = Vector2<f64>;

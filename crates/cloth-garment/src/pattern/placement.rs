@@ -1,7 +1,7 @@
 //! Where a flat panel starts in 3D before sewing.
 
 use super::Point2;
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use nalgebra::{Rotation3, UnitQuaternion};
 
 /// A panel's starting pose: its 2D point (x, y) is first laid at (x, y, 0) in the panel's

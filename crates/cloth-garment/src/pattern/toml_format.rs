@@ -33,7 +33,7 @@ use super::{
     AttachedEdge, BodyPart, Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam,
     SeamOrientation, SeamSide, Wrap,
 };
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use serde::Deserialize;
 use std::path::Path;
 

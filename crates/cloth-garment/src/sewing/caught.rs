@@ -13,7 +13,7 @@
 //! pass's border to the weld.
 
 use crate::garment::Garment;
-use cloth_core::{Collider, LayerPass, Neighbours, Proximity, Simulation, Vec3};
+use cloth_core::{math::Vec3, Collider, LayerPass, Neighbours, Proximity, Simulation};
 use std::collections::BTreeMap;
 
 /// A layer of cloth found across a seam's pairs, and the panel let through it.

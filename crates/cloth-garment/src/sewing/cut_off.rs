@@ -10,7 +10,7 @@
 //! shoulder's sides, moved out, drags its neighbours through.
 
 use crate::garment::Welded;
-use cloth_core::{components, ClothMesh, Neighbours, SelfCrossings, Vec3};
+use cloth_core::{components, math::Vec3, ClothMesh, Neighbours, SelfCrossings};
 
 /// The most particles a region cut off may have: a corner or a flap, not a panel.
 const MOST_PARTICLES: usize = 400;

@@ -12,7 +12,7 @@
 //! round the body instead of pressing it on it.
 
 use crate::garment::SeamPairs;
-use cloth_core::Vec3;
+use cloth_core::math::Vec3;
 use std::ops::Range;
 
 /// The seams pulled shut from their clear ends, and which of their pairs are pulled yet.

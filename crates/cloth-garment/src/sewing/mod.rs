@@ -19,11 +19,11 @@ pub use weld_crossings::WeldCrossings;
 use crate::garment::{Garment, GarmentError, HeldOpen, Ring, Welded};
 use crate::pattern::BodyPart;
 use caught::Catcher;
+use cloth_core::{math::Vec3, RestCriteria, SelfCollision, SimulationBuilder, SolverSettings, StepStats};
 use cloth_core::{
     Attachment, Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError,
     Simulation,
 };
-use cloth_core::{RestCriteria, SelfCollision, SimulationBuilder, SolverSettings, StepStats, Vec3};
 use from_clear_end::FromClearEnds;
 use std::ops::ControlFlow;
 use std::sync::Arc;

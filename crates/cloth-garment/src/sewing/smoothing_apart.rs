@@ -19,7 +19,7 @@
 //! layer, ends on the layer. The drape then goes on from there, its collision holding
 //! apart what no longer crosses.
 
-use cloth_core::{ClothMesh, Collider, Neighbours, Proximity, SelfCrossings, Vec3};
+use cloth_core::{math::Vec3, ClothMesh, Collider, Neighbours, Proximity, SelfCrossings};
 
 /// What smoothing the cloth apart did.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]

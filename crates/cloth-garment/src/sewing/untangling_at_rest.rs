@@ -20,7 +20,7 @@
 //! draped again from where it was sewn, loose, and the drape that crosses less is kept.
 
 use super::smoothing_apart::Smoothing;
-use cloth_core::{RestOutcome, StopReason, Vec3};
+use cloth_core::{math::Vec3, RestOutcome, StopReason};
 
 /// The most times a garment at rest through itself is smoothed apart and draped on. Each
 /// drape on kept crosses less than the rest before it; the smoothing then finds fewer

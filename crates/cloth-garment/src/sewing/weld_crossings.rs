@@ -10,7 +10,7 @@
 
 use super::cut_off;
 use crate::garment::Welded;
-use cloth_core::{Collider, Neighbours, Proximity, SelfCrossings, Vec3};
+use cloth_core::{math::Vec3, Collider, Neighbours, Proximity, SelfCrossings};
 
 /// What clearing the weld's crossings found and left (intersecting edge-triangle pairs),
 /// and how many parts of the cloth cut off by them were moved through as one (see

@@ -12,7 +12,7 @@
 //! weld reaches, the sewing fails instead, saying what lies between.
 
 use crate::garment::{Garment, HeldOpen};
-use cloth_core::{Collider, ParamError, Simulation, Vec3};
+use cloth_core::{math::Vec3, Collider, ParamError, Simulation};
 
 /// The pairs of `garment`'s seams farther apart than `tolerance` at `x`.
 pub(super) fn open_pairs(garment: &Garment, x: &[Vec3], tolerance: f64) -> Vec<[usize; 2]> {

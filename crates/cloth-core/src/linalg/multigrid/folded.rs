@@ -47,7 +47,7 @@ impl Folded {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Mat3, Vec3};
+    use crate::math::{Mat3, Vec3};
 
     fn chain(n: usize) -> BlockSparse {
         let mut m = BlockSparse::from_pairs(n, (1..n).map(|i| (i - 1, i)));

@@ -4,7 +4,7 @@
 use super::prolongator::Prolongator;
 use crate::linalg::row_chunks::for_each_row;
 use crate::linalg::BlockSparse;
-use crate::Mat3;
+use crate::math::Mat3;
 
 #[derive(Debug, Clone, Default)]
 pub(super) struct Galerkin {

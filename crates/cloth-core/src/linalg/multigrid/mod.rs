@@ -19,7 +19,7 @@ mod spectrum;
 mod tentative;
 
 use super::{inverse_diagonal, BlockSparse, Filter};
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 use aggregation::{aggregate, Aggregates};
 use folded::Folded;
 use galerkin::Galerkin;

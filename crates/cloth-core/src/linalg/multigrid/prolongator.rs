@@ -5,7 +5,7 @@
 use super::aggregation::Aggregates;
 use crate::linalg::row_chunks::{for_each_entry, for_each_row};
 use crate::linalg::BlockSparse;
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 #[derive(Debug, Clone, Default)]
 pub(super) struct Prolongator {

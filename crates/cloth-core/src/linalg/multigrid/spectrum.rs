@@ -6,7 +6,7 @@
 
 use super::product_then;
 use crate::linalg::{BlockSparse, Filter};
-use crate::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 use nalgebra::SMatrix;
 
 /// Lanczos steps (matrix-vector products) per estimate.

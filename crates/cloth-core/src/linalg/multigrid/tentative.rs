@@ -9,7 +9,7 @@
 //! one node of three unknowns per aggregate.
 
 use super::aggregation::Aggregates;
-use crate::Mat3;
+use crate::math::Mat3;
 
 /// Relative size under which a direction of an aggregate's Gram matrix is empty: every
 /// node of the aggregate has it constrained.

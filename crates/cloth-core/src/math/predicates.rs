@@ -1,7 +1,8 @@
-//! Distances and intersections of points, segments and triangles: what proximity, the
-//! continuous test and the intersection count are made of.
+//! Distances and intersections of points, segments and triangles: what self-contact's
+//! proximity, its continuous test and the intersection counts (of the cloth with itself and
+//! with a body) are made of.
 
-use crate::Vec3;
+use crate::math::Vec3;
 
 /// Barycentric weights of the point of triangle `(a, b, c)` nearest to `p` (non-negative,
 /// summing to one), found by the Voronoi region of `p` (vertex, edge or face).
