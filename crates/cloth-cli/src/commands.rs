@@ -1,7 +1,7 @@
 //! The subcommands: each reads its input, calls the library, and says what happened.
 
+use crate::failure::Failure;
 use crate::progress::{Progress, Verbosity};
-use crate::Failure;
 use cloth::garment::mannequin::{Mannequin, Measurements};
 use cloth::presets::FabricLibrary;
 use cloth::scene_file::{claim_output_folder, FolderRun, RunFolderError, RunOutcome, SceneFile};

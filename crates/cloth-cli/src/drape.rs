@@ -2,7 +2,7 @@
 //! summary. The work is the library's (`cloth::drape`); this file parses, schedules the
 //! patterns over `--jobs` threads, shows progress and catches Ctrl-C and SIGTERM.
 
-use crate::Failure;
+use crate::failure::Failure;
 use cloth::collide::{SurfaceOptions, TriSurface};
 use cloth::drape::{find_patterns, write_summary, DrapeRequest, PatternInput, SummaryEntry};
 use cloth::presets::FabricLibrary;

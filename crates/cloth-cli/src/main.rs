@@ -1,9 +1,10 @@
 //! The `cloth` command: a thin layer over the library. Exit status 0 on success, 2 when the
 //! input is at fault (a bad scene, pattern, body or fabric), 1 when a valid run fails.
 
+mod failure;
+mod progress;
 mod commands;
 mod drape;
-mod progress;
 mod render;
 
 use clap::{Args, Parser, Subcommand};
@@ -101,27 +102,6 @@ impl MannequinArgs {
             m.with_arms()
         } else {
             m
-        }
-    }
-}
-
-/// A failure with the exit status it deserves.
-pub struct Failure {
-    pub message: String,
-    pub status: u8,
-}
-
-impl Failure {
-    pub fn input(message: impl std::fmt::Display) -> Self {
-        Self {
-            message: message.to_string(),
-            status: 2,
-        }
-    }
-    pub fn run(message: impl std::fmt::Display) -> Self {
-        Self {
-            message: message.to_string(),
-            status: 1,
         }
     }
 }

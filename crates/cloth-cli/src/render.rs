@@ -2,7 +2,7 @@
 //! strain (as `cloth run` writes) keeps its colours and gets the legend; meshes without
 //! colours are told apart by neutral tints.
 
-use crate::Failure;
+use crate::failure::Failure;
 use cloth::render::{
     check_image_size, figure, read_render_mesh, Colouring, Legend, MeshColours, Panel, View, NEUTRAL_GREY,
 };

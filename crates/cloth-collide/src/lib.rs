@@ -6,14 +6,14 @@
 //! point queries for contact, ray casts along each particle's path against tunnelling, and
 //! the sharp edges and corners that must not poke through cloth triangles.
 
-mod bodies;
-mod body;
-mod contact_mesh;
 mod convert;
-mod layer;
 mod motion;
 pub mod surface;
+mod contact_mesh;
+mod layer;
 mod thin_parts;
+mod body;
+mod bodies;
 
 pub use bodies::Bodies;
 pub use body::{Body, BodyError, DEFAULT_SHARP_ANGLE, DEFAULT_THICKNESS};

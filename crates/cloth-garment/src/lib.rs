@@ -10,11 +10,11 @@
 // `!(x > 0.0)` is how NaN is refused along with the out-of-range values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-pub mod garment;
-pub mod garmentcode;
 pub mod mannequin;
 pub mod meshing;
 pub mod pattern;
+pub mod garment;
+pub mod garmentcode;
 pub mod sewing;
 
 pub use garment::{Garment, GarmentBuilder, GarmentError, HeldOpen, Layers, PlacementWarning, Touching};

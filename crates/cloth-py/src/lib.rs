@@ -4,16 +4,18 @@
 //! re-exports it and adds batch runs.
 
 mod arrays;
-mod body;
-mod convert;
-mod drape;
 mod errors;
-mod fabric;
-mod garment;
+mod convert;
+mod self_collision;
 mod mesh;
+mod body;
+mod fabric;
+mod results;
 mod observe;
-mod scene;
 mod simulation;
+mod garment;
+mod scene;
+mod drape;
 
 use pyo3::prelude::*;
 
@@ -31,12 +33,12 @@ fn _cloth(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<garment::SewnGarment>()?;
     m.add_class::<garment::Draped>()?;
     m.add_class::<simulation::Simulation>()?;
-    m.add_class::<simulation::StepStats>()?;
-    m.add_class::<simulation::RestOutcome>()?;
-    m.add_class::<simulation::Snapshot>()?;
-    m.add_class::<simulation::Strain>()?;
-    m.add_function(wrap_pyfunction!(simulation::strain, m)?)?;
-    m.add_function(wrap_pyfunction!(simulation::grid_stretch, m)?)?;
+    m.add_class::<results::StepStats>()?;
+    m.add_class::<results::RestOutcome>()?;
+    m.add_class::<results::Snapshot>()?;
+    m.add_class::<results::Strain>()?;
+    m.add_function(wrap_pyfunction!(results::strain, m)?)?;
+    m.add_function(wrap_pyfunction!(results::grid_stretch, m)?)?;
     m.add_function(wrap_pyfunction!(drape::drape_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(drape::write_drape_summary, m)?)?;
     m.add_class::<scene::Scene>()?;

@@ -3,7 +3,7 @@
 //! which then keeps the state reached.
 
 use crate::arrays::vec3_array;
-use crate::simulation::{Snapshot, StepStats};
+use crate::results::{Snapshot, StepStats};
 use cloth::scene_file::RunObserver;
 use cloth::Simulation;
 use pyo3::exceptions::PyValueError;

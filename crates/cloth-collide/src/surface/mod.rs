@@ -2,23 +2,23 @@
 //! from primitives, repaired where that is sound and described where it is not. Pure
 //! geometry; collision queries live elsewhere.
 
+mod error;
+mod options;
 mod defects;
 mod edges;
-mod error;
 mod features;
-mod gltf;
-mod io;
 mod measure;
-mod obj;
-mod options;
 mod orientation;
-mod overlap;
-mod ply;
-mod primitives;
-mod repair;
-mod stl;
 mod weld;
 mod winding;
+mod overlap;
+mod repair;
+mod primitives;
+mod io;
+mod obj;
+mod stl;
+mod ply;
+mod gltf;
 
 use cloth_core::math::Vec3;
 

@@ -1,11 +1,11 @@
 //! A pattern made into cloth: its panels meshed, placed around the body, and the seam
 //! vertices paired one to one, ready to be sewn.
 
-mod error;
 mod gathering;
 mod layers;
 mod placement_check;
 mod ring;
+mod error;
 mod size;
 mod touching;
 mod weld;

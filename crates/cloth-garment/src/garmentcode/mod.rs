@@ -32,10 +32,10 @@
 //! stay empty (the format has none), the grain is the panel's vertical (GarmentCode has
 //! no grain line), and the fabric is the garment's.
 
-mod convert;
+mod schema;
 mod curvature;
 mod panel;
-mod schema;
+mod convert;
 
 use std::path::Path;
 

@@ -18,6 +18,13 @@ use serde::{Deserialize, Serialize};
 
 use super::Measurements;
 
+/// Depth of the section through the shoulder points as a fraction of the bust girth
+/// (14 cm for a 92 cm bust: the upper chest and back at the collar bones).
+pub(super) const SHOULDER_DEPTH: f64 = 0.155;
+/// How far behind the centre line the shoulder points sit, as a fraction of the shoulder
+/// section's depth: the shoulders are set back a little from the chest.
+pub(super) const SHOULDER_SHIFT: f64 = 0.035;
+
 const TOP: f64 = 0.876;
 const NECK: f64 = 0.848;
 const SHOULDER: f64 = 0.818;
@@ -74,7 +81,12 @@ impl Landmarks {
             crotch_z: CROTCH * h,
             bottom_z: BOTTOM * h,
             shoulder_x: 0.5 * m.shoulder_width,
-            shoulder_y: super::torso::shoulder_y(m),
+            shoulder_y: shoulder_y(m),
         }
     }
+}
+
+/// y of the shoulder points: the widest points of the section through them.
+fn shoulder_y(m: &Measurements) -> f64 {
+    SHOULDER_SHIFT * SHOULDER_DEPTH * m.bust
 }

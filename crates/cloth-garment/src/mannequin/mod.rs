@@ -10,16 +10,16 @@
 //! across.
 
 mod arclength;
-mod arms;
+mod spline;
 mod error;
-mod landmarks;
 mod loft;
 mod measure;
 mod measurements;
-mod obj;
+mod landmarks;
 mod sections;
-mod spline;
 mod torso;
+mod arms;
+mod obj;
 
 use cloth_collide::{Body, SurfaceOptions, TriSurface};
 

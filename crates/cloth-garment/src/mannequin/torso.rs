@@ -10,6 +10,7 @@
 use cloth_core::math::Vec3;
 
 use super::arclength::{cumulative, equal_steps};
+use super::landmarks::{SHOULDER_DEPTH, SHOULDER_SHIFT};
 use super::loft::{Cap, Loft};
 use super::sections::{with_girth, with_girth_at_width, Section, PARAMETERS};
 use super::spline::MonotoneCubic;
@@ -30,12 +31,6 @@ const ARMPIT_GIRTH: f64 = 0.95;
 /// chest does not pinch in between bust and shoulders.
 const ARMPIT_WIDTH: f64 = 0.85;
 const ARMPIT_TO_BUST_WIDTH: f64 = 0.95;
-/// Depth of the section through the shoulder points as a fraction of the bust girth
-/// (14 cm for a 92 cm bust: the upper chest and back at the collar bones).
-const SHOULDER_DEPTH: f64 = 0.155;
-/// How far behind the centre line the shoulder points sit, as a fraction of the shoulder
-/// section's depth: the shoulders are set back a little from the chest.
-const SHOULDER_SHIFT: f64 = 0.035;
 /// Radius of the shoulder's rounded end and of the turn into the neck, as fractions of the
 /// shoulder line's run from the neck to the shoulder point.
 const SHOULDER_TIP: f64 = 0.1;
@@ -211,11 +206,6 @@ fn key_sections(m: &Measurements, lm: &Landmarks, n: usize) -> (Vec<Knot>, (f64,
     knots.push(knot(lm.neck_z, neck));
     knots.push(knot(lm.top_z - caps.1, neck_top));
     (knots, caps)
-}
-
-/// y of the shoulder points: the widest points of the section through them.
-pub(crate) fn shoulder_y(m: &Measurements) -> f64 {
-    SHOULDER_SHIFT * SHOULDER_DEPTH * m.bust
 }
 
 /// Points (x, z) strictly between the ends of the shoulder line seen from the front, from
