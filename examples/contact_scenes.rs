@@ -6,7 +6,7 @@
 //!
 //! SCENE is one of sphere, table, turning, corner, plate.
 
-use cloth::obj::write_cloth_obj;
+use cloth::formats::obj::write_cloth_obj;
 use cloth::scenes::{CubeCorner, FallingPlate, Scene, SceneError, SphereDrop, Tablecloth, TurningSphere};
 use cloth::{RestCriteria, StopReason, StrainReport};
 use std::ops::ControlFlow;

@@ -7,7 +7,7 @@
 //! strip with a J-shaped law. Writes each draped Cusick specimen as an OBJ and its shadow
 //! as an SVG to `target/validation/`.
 
-use cloth::obj::write_cloth_obj;
+use cloth::formats::obj::write_cloth_obj;
 use cloth::presets::FabricLibrary;
 use cloth::validation::cantilever::bending_length;
 use cloth::validation::cusick::{SPECIMEN_RADIUS, SUPPORT_RADIUS};

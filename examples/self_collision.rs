@@ -4,7 +4,7 @@
 //!
 //!     cargo run --release --example self_collision -- fold|stack|throw [STEPS] [OUT_DIR]
 
-use cloth::obj::write_cloth_obj;
+use cloth::formats::obj::write_cloth_obj;
 use cloth::scenes::{FoldingStrip, Scene, SheetOntoSheet, StackedSheets};
 use std::path::PathBuf;
 use std::time::Instant;

@@ -1,13 +1,13 @@
 //! The standard benchmark scenes behind `cloth bench`: a fixed set of runs whose time per
 //! step and CG iterations are printed as JSON, to track speed over time.
 
-use crate::garment::sewing::{drape_simulation, sew};
 use crate::scene_file::{ClothSpec, PreparedCloth, SceneFile};
 use crate::scenes::SphereDrop;
 use cloth_core::{
     math::Vec3, Fabric, GridBuilder, Interrupt, Pin, SelfCollision, Simulation, SimulationBuilder,
     SolverSettings,
 };
+use cloth_garment::sewing::{drape_simulation, sew};
 use serde::Serialize;
 use std::ops::ControlFlow;
 use std::path::Path;

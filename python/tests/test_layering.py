@@ -16,8 +16,11 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "scripts" / "imports.py"
 
-# The crates restructured so far (issue 23); the rest join as they are.
+# Every crate of the workspace: the root one (".") and those under crates/.
 BOTTOM_UP = [
+    ".",
+    "crates/cloth-formats",
+    "crates/cloth-render",
     "crates/cloth-core",
     "crates/cloth-collide",
     "crates/cloth-garment",
@@ -46,6 +49,11 @@ def test_the_restructured_crates_read_bottom_up(crate: str) -> None:
     run = imports("--check", "--depth", "2", str(REPO / crate))
     assert run.returncode == 0, run.stdout + run.stderr
     assert "total running back up: 0 in library code, 0 in unit tests" in run.stdout
+
+
+def test_every_crate_of_the_workspace_is_held_to_it() -> None:
+    crates = sorted(f"crates/{p.name}" for p in (REPO / "crates").iterdir() if (p / "src").is_dir())
+    assert sorted(c for c in BOTTOM_UP if c != ".") == crates
 
 
 def test_an_import_of_a_module_declared_later_runs_back_up(tmp_path: Path) -> None:

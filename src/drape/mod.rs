@@ -27,7 +27,7 @@ pub const DEFAULT_BODY_MIN_THICKNESS: f64 = 0.001;
 /// as [`DrapeRequest::body_min_thickness`] holds it: `None` at the body's own thickness (a
 /// uniform layer). Refused, saying why, unless positive and at most that thickness.
 pub fn body_min_thickness(floor: f64) -> Result<Option<f64>, String> {
-    let layer = crate::collide::DEFAULT_THICKNESS;
+    let layer = cloth_collide::DEFAULT_THICKNESS;
     if !(floor > 0.0 && floor <= layer) {
         return Err(format!(
             "{floor} must be a positive length in m, at most the body's contact thickness ({layer} m)"

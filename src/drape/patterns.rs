@@ -30,7 +30,7 @@ fn is_pattern_file(path: &Path) -> bool {
 fn name_of(path: &Path) -> String {
     let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
     if is_json {
-        crate::garment::garmentcode::pattern_name(&path.display().to_string())
+        cloth_garment::garmentcode::pattern_name(&path.display().to_string())
     } else {
         path.file_stem()
             .and_then(|s| s.to_str())

@@ -149,9 +149,9 @@ const TIME_LIMIT: &str = "stopped by the time limit";
 /// place, so a batch killed while writing leaves the last complete one).
 pub fn write_summary(dir: &Path, entries: &[SummaryEntry]) -> std::io::Result<()> {
     let json = serde_json::to_string_pretty(entries).expect("entries serialise");
-    crate::obj::write_atomically(&dir.join(SUMMARY_JSON), |w| w.write_all(json.as_bytes()))?;
+    cloth_formats::atomic::write_atomically(&dir.join(SUMMARY_JSON), |w| w.write_all(json.as_bytes()))?;
     let table = markdown(entries);
-    crate::obj::write_atomically(&dir.join(SUMMARY_MD), |w| w.write_all(table.as_bytes()))
+    cloth_formats::atomic::write_atomically(&dir.join(SUMMARY_MD), |w| w.write_all(table.as_bytes()))
 }
 
 fn markdown(entries: &[SummaryEntry]) -> String {

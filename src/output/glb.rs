@@ -10,10 +10,10 @@
 //! over its triangles of the larger of warp and weft strain, compression as 0; its full
 //! scale is in the cloth node's `extras`.
 
-use super::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
-use crate::collide::TriSurface;
-use crate::obj::write_atomically;
+use cloth_collide::TriSurface;
 use cloth_core::{math::Vec3, ClothMesh};
+use cloth_formats::atomic::write_atomically;
+use cloth_render::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use gltf_json::accessor::{ComponentType, GenericComponentType, Type};
 use gltf_json::buffer::Target;
 use gltf_json::material::{PbrBaseColorFactor, PbrMetallicRoughness, StrengthFactor};

@@ -5,16 +5,14 @@
 mod glb;
 mod ply;
 mod report;
-mod strain_colours;
 
 pub use glb::{write_glb, GlbCloth};
 pub use ply::write_strain_ply;
 pub use report::write_report;
-pub use strain_colours::{colour, strain_colour, vertex_means, vertex_strain, FULL_SCALE_PERCENT};
 
-use crate::collide::{Bodies, TriSurface};
-use crate::obj::write_cloth_obj_with_uv;
 use crate::scene_file::{OutputSpec, RunResult};
+use cloth_collide::{Bodies, TriSurface};
+use cloth_formats::obj::write_cloth_obj_with_uv;
 use std::path::{Path, PathBuf};
 
 /// Writes the outputs `spec` asks for into `dir` (which must exist); returns the files.
@@ -41,7 +39,7 @@ pub fn write_outputs(
     if spec.bodies && !surfaces.is_empty() {
         let path = dir.join("bodies.obj");
         let merged = TriSurface::merged(&surfaces);
-        crate::obj::write_atomically(&path, |out| merged.write_obj_to(out))?;
+        cloth_formats::atomic::write_atomically(&path, |out| merged.write_obj_to(out))?;
         written.push(path);
     }
     if spec.glb {
@@ -62,7 +60,7 @@ pub fn write_outputs(
     if spec.png {
         let path = dir.join("render.png");
         let [width, height] = spec.image_size;
-        crate::render::render_run(&result.mesh, &result.positions, &surfaces, width, height)
+        cloth_render::render_run(&result.mesh, &result.positions, &surfaces, width, height)
             .write_png(&path)?;
         written.push(path);
     }

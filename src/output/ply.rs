@@ -2,9 +2,9 @@
 //! of its triangles (mean over them), blue at 0 % through green and yellow to red at 5 %
 //! and beyond; compression is shown as 0.
 
-use super::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
-use crate::obj::write_atomically;
 use cloth_core::{math::Vec3, ClothMesh};
+use cloth_formats::atomic::write_atomically;
+use cloth_render::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use std::path::Path;
 
 /// Writes an ASCII PLY of the cloth with per-vertex colours and a `strain` property (%).

@@ -1,9 +1,9 @@
 //! report.json and report.md: the same figures, for programs and for people.
 
-use crate::garment::garment::closing_said;
-use crate::garment::sewing::{SeamStall, StallThen};
-use crate::obj::write_atomically;
 use crate::scene_file::{RunOutcome, RunReport};
+use cloth_formats::atomic::write_atomically;
+use cloth_garment::garment::closing_said;
+use cloth_garment::sewing::{SeamStall, StallThen};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

@@ -7,12 +7,12 @@ use super::frame::{placement, UpAxis};
 use super::records::{BodySpec, ClothSpec, FabricSpec, SceneFile};
 use super::warning::SceneWarning;
 use super::SceneFileError;
-use crate::collide::{Bodies, Body, TriSurface};
-use crate::garment::mannequin::Mannequin;
-use crate::garment::{garmentcode, Garment, GarmentBuilder, Pattern};
 use crate::presets::FabricLibrary;
 use crate::validation::{Cantilever, CusickTest};
+use cloth_collide::{Bodies, Body, TriSurface};
 use cloth_core::{math::Vec3, Fabric, GridBuilder, GridShape, Pin, SimulationBuilder};
+use cloth_garment::mannequin::Mannequin;
+use cloth_garment::{garmentcode, Garment, GarmentBuilder, Pattern};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -274,7 +274,7 @@ impl ClothSpec {
             ClothSpec::Grid { nx, ny, .. } => Some(2.0 * (nx as f64 - 1.0) * (ny as f64 - 1.0)),
             ClothSpec::Cusick { edge_length, .. } => {
                 let disk = std::f64::consts::PI * crate::validation::cusick::SPECIMEN_RADIUS.powi(2);
-                Some(crate::garment::garment::triangles_in(disk, edge_length))
+                Some(cloth_garment::garment::triangles_in(disk, edge_length))
             }
             ClothSpec::Cantilever { overhang, cells } => {
                 let across = crate::validation::cantilever::STRIP_WIDTH * cells as f64 / overhang;

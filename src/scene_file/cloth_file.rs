@@ -210,10 +210,13 @@ fn flat_coordinates(positions: &[Vec3]) -> Result<Vec<Vector2<f64>>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scratch::ScratchFile;
+    use std::io::Write;
 
-    fn write(name: &str, text: &str) -> ScratchFile {
-        ScratchFile::new(name, text.as_bytes())
+    /// `text` in a temporary file whose name ends in `name`, removed when dropped.
+    fn write(name: &str, text: &str) -> tempfile::TempPath {
+        let mut file = tempfile::Builder::new().suffix(name).tempfile().unwrap();
+        file.write_all(text.as_bytes()).unwrap();
+        file.into_temp_path()
     }
 
     #[test]

@@ -1,10 +1,10 @@
 //! What can be wrong with a scene, named by file and key; and what can go wrong running it.
 
-use crate::collide::{BodyError, SurfaceError};
-use crate::garment::mannequin::MannequinError;
-use crate::garment::{GarmentError, PatternError};
 use crate::presets::PresetError;
+use cloth_collide::{BodyError, SurfaceError};
 use cloth_core::{MeshError, ParamError};
+use cloth_garment::mannequin::MannequinError;
+use cloth_garment::{GarmentError, PatternError};
 use std::path::PathBuf;
 
 #[derive(Debug, thiserror::Error)]

@@ -10,9 +10,9 @@
 //! rand_1_061 on `mean_all`: its waistband's weft, 84.3 cm at rest, goes round 91.1 cm of
 //! waist, asking 8.0 %; it rests at p99 weft 8.7 %).
 
-use crate::garment::meshing::encloses;
 use cloth_collide::TriSurface;
 use cloth_core::{math::Vec3, ClothMesh, StrainReport};
+use cloth_garment::meshing::encloses;
 use nalgebra::{Matrix3, Vector2};
 use serde::Serialize;
 use std::collections::HashMap;

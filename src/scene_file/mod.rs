@@ -2,36 +2,35 @@
 //! the solver and its stages, the outputs), read by the `cloth` command and the Python
 //! package alike. Paths in it are relative to the scene file.
 
-mod build;
-mod cloth_file;
 mod error;
-mod fit;
-mod folder;
-mod frame;
-mod observer;
-mod panel_report;
-mod recorder;
-mod records;
-mod report;
-mod run;
-mod verdict;
 mod warning;
+mod frame;
+mod records;
+mod cloth_file;
+mod fit;
+mod observer;
+mod strain_summary;
+mod panel_report;
+mod report;
+mod recorder;
+mod verdict;
+mod build;
+mod run;
 
 pub use build::{Prepared, PreparedCloth, SheetTest};
 pub use cloth_file::read_cloth_obj;
 pub use error::SceneFileError;
 pub use fit::Fit;
-pub use folder::{claim_output_folder, FolderRun, RunFolderError};
 pub use frame::{placement, UpAxis};
 pub use observer::RunObserver;
 pub use panel_report::PanelReport;
 pub(crate) use recorder::median;
 pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
 pub use report::{
-    Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, StrainSummary,
-    TangleRecord,
+    Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, TangleRecord,
 };
 pub use run::RunResult;
+pub use strain_summary::StrainSummary;
 pub use verdict::{CLEAN, CLEAN_P99_STRAIN, REASONS, STRETCHED};
 pub use warning::SceneWarning;
 

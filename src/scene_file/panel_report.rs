@@ -3,7 +3,7 @@
 //! the panels to look at: the skirt cut smaller than the hips, not the bodice above it;
 //! the collar through the shoulder it was caught under.
 
-use super::report::StrainSummary;
+use super::strain_summary::StrainSummary;
 use cloth_core::{BodyIntersections, ClothMesh, StrainReport};
 use serde::Serialize;
 use std::collections::HashMap;

@@ -4,9 +4,10 @@
 
 use super::observer::RunObserver;
 use super::records::OutputSpec;
-use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport, StrainSummary};
-use crate::obj::write_cloth_obj_with_uv;
+use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport};
+use super::strain_summary::StrainSummary;
 use cloth_core::{math::Vec3, ClothMesh, Simulation, StepStats, Tangle};
+use cloth_formats::obj::write_cloth_obj_with_uv;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -1,10 +1,10 @@
 //! The scene file's records, as serde reads them.
 
 use super::frame::UpAxis;
-use crate::collide::SurfaceOptions;
-use crate::garment::mannequin::Measurements;
-use crate::garment::sewing::{DrapeSettings, SewingSettings};
+use cloth_collide::SurfaceOptions;
 use cloth_core::{Fabric, KesMeasurement, RestCriteria, SelfCollision, SolverSettings};
+use cloth_garment::mannequin::Measurements;
+use cloth_garment::sewing::{DrapeSettings, SewingSettings};
 use serde::Deserialize;
 use std::path::PathBuf;
 
@@ -40,7 +40,7 @@ pub struct SceneFile {
 }
 
 fn default_max_triangles() -> usize {
-    crate::garment::garment::DEFAULT_MAX_TRIANGLES
+    cloth_garment::garment::DEFAULT_MAX_TRIANGLES
 }
 
 impl SceneFile {
@@ -142,7 +142,7 @@ fn cusick_damping() -> f64 {
 }
 
 fn default_edge_length() -> f64 {
-    crate::garment::garment::DEFAULT_EDGE_LENGTH
+    cloth_garment::garment::DEFAULT_EDGE_LENGTH
 }
 fn x_axis() -> [f64; 3] {
     [1.0, 0.0, 0.0]
@@ -279,7 +279,7 @@ impl OutputSpec {
     /// What cannot be written: the reason and the key.
     pub(crate) fn check(&self) -> Result<(), (&'static str, String)> {
         let [w, h] = self.image_size;
-        crate::render::check_image_size(w, h).map_err(|reason| ("output.image_size", reason))?;
+        cloth_render::check_image_size(w, h).map_err(|reason| ("output.image_size", reason))?;
         if self.frames_every == Some(0) {
             return Err(("output.frames_every", "must be at least 1 step".into()));
         }

@@ -1,8 +1,9 @@
 //! What a run reports (report.json; report.md says the same in tables).
 
 use super::panel_report::PanelReport;
-use crate::garment::sewing::{DrapeSettings, SewingSettings};
-use cloth_core::{math::Vec3, ClothMesh, RestCriteria, SelfCollision, SolverSettings, StrainReport};
+use super::strain_summary::StrainSummary;
+use cloth_core::{RestCriteria, SelfCollision, SolverSettings};
+use cloth_garment::sewing::{DrapeSettings, SewingSettings};
 use serde::Serialize;
 
 /// What one stage did.
@@ -69,39 +70,6 @@ pub struct Checkpoint {
     pub median_step_ms: f64,
 }
 
-/// The strain of a cloth state, %.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct StrainSummary {
-    pub max_warp: f64,
-    pub max_weft: f64,
-    pub p99_warp: f64,
-    pub p99_weft: f64,
-}
-
-impl StrainSummary {
-    pub fn of(mesh: &ClothMesh, positions: &[Vec3]) -> Self {
-        Self::from_report(&StrainReport::new(mesh, positions))
-    }
-
-    /// The larger of the p99 warp and weft strain, and which thread it is.
-    pub fn p99(&self) -> (f64, &'static str) {
-        if self.p99_weft >= self.p99_warp {
-            (self.p99_weft, "weft")
-        } else {
-            (self.p99_warp, "warp")
-        }
-    }
-
-    pub fn from_report(s: &StrainReport) -> Self {
-        Self {
-            max_warp: s.max_warp,
-            max_weft: s.max_weft,
-            p99_warp: s.p99_warp,
-            p99_weft: s.p99_weft,
-        }
-    }
-}
-
 /// The run's report (report.json).
 #[derive(Debug, Clone, Serialize)]
 pub struct RunReport {
@@ -132,17 +100,17 @@ pub struct RunReport {
     /// m (garments only).
     pub largest_seam_gap: Option<f64>,
     /// When seams stopped closing while sewn, and how the pull was raised to close them.
-    pub seam_stalls: Vec<crate::garment::sewing::SeamStall>,
+    pub seam_stalls: Vec<cloth_garment::sewing::SeamStall>,
     /// Layers of cloth found across the seams' sides while sewn (a hood's edge between the
     /// shoulders), and the panel let through each (garments only).
-    pub caught_layers: Vec<crate::garment::sewing::CaughtLayer>,
+    pub caught_layers: Vec<cloth_garment::sewing::CaughtLayer>,
     /// The cloth's crossings the weld made, and those left after clearing them (garments
     /// that were sewn only).
-    pub weld_crossings: Option<crate::garment::sewing::WeldCrossings>,
+    pub weld_crossings: Option<cloth_garment::sewing::WeldCrossings>,
     /// What was done with a garment that came to rest through itself: smoothed apart and
     /// draped on, then draped again loose if it still crossed; each one's crossings and
     /// whether it was kept (garments only).
-    pub untangling_at_rest: Option<crate::garment::sewing::UntanglingAtRest>,
+    pub untangling_at_rest: Option<cloth_garment::sewing::UntanglingAtRest>,
     /// Particles of the pattern's attached edges (a waist, a neckline), each held on one
     /// side of where it was placed (garments only).
     pub attached_particles: Option<usize>,

@@ -8,15 +8,16 @@ use super::observer::RunObserver;
 use super::panel_report::panel_reports;
 use super::recorder::{Recorded, Recorder};
 use super::records::SceneFile;
-use super::report::{Measurement, RunOutcome, RunReport, RunSettings, StrainSummary, TangleRecord};
+use super::report::{Measurement, RunOutcome, RunReport, RunSettings, TangleRecord};
+use super::strain_summary::StrainSummary;
 use super::verdict::verdict;
 use super::SceneFileError;
-use crate::garment::sewing::{drape, sew};
-use crate::garment::GarmentError;
 use cloth_core::{
     body_intersections_by_edge, math::Vec3, self_intersecting_pairs, BodyIntersections, ClothMesh, Collider,
     StopReason, StrainReport,
 };
+use cloth_garment::sewing::{drape, sew};
+use cloth_garment::GarmentError;
 use std::path::Path;
 use std::time::Instant;
 

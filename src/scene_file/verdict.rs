@@ -5,7 +5,8 @@
 
 use super::fit::Fit;
 use super::panel_report::PanelReport;
-use super::report::{RunOutcome, StageReport, StrainSummary};
+use super::report::{RunOutcome, StageReport};
+use super::strain_summary::StrainSummary;
 
 /// The 99th percentile of warp or weft strain a clean garment stays under, %.
 pub const CLEAN_P99_STRAIN: f64 = 5.0;

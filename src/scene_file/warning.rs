@@ -1,7 +1,7 @@
 //! What a scene loads with that the user should know: the run goes on.
 
-use crate::collide::SurfaceDefect;
-use crate::garment::{Layers, PlacementWarning, Touching};
+use cloth_collide::SurfaceDefect;
+use cloth_garment::{Layers, PlacementWarning, Touching};
 
 /// One thing found while preparing a scene, with what was done about it.
 #[derive(Debug, Clone, PartialEq)]
@@ -15,7 +15,7 @@ pub enum SceneWarning {
     /// Panels touch where no seam joins them: they do not collide there while sewn.
     Touching(Touching),
     /// A seam's sides differ in length by more than ease: the longer is gathered.
-    Gather(crate::garment::Gather),
+    Gather(cloth_garment::Gather),
 }
 
 impl std::fmt::Display for SceneWarning {

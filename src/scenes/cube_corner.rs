@@ -1,5 +1,5 @@
 use super::{horizontal_sheet, Scene, SceneError};
-use crate::collide::{Body, TriSurface};
+use cloth_collide::{Body, TriSurface};
 use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 
@@ -28,7 +28,7 @@ impl Default for CubeCorner {
             drop_height: 0.05,
             friction: 0.5,
             thickness: 0.003,
-            sharp_angle: crate::collide::DEFAULT_SHARP_ANGLE,
+            sharp_angle: cloth_collide::DEFAULT_SHARP_ANGLE,
             time_step: 1.0 / 120.0,
         }
     }

@@ -1,5 +1,5 @@
 use super::{scene_fabric, Scene, SceneError};
-use crate::collide::{Body, TriSurface};
+use cloth_collide::{Body, TriSurface};
 use cloth_core::{math::Vec3, GridBuilder, SimulationBuilder};
 use nalgebra::Isometry3;
 

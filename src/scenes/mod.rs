@@ -21,7 +21,7 @@ pub use tablecloth::Tablecloth;
 pub use tilted_plane::TiltedPlane;
 pub use turning_sphere::TurningSphere;
 
-use crate::collide::{Bodies, Body, BodyError, SurfaceError};
+use cloth_collide::{Bodies, Body, BodyError, SurfaceError};
 use cloth_core::{
     math::Vec3, ClothMesh, Fabric, GridBuilder, MeshError, ParamError, Simulation, SimulationBuilder,
 };

@@ -1,5 +1,5 @@
 use super::{horizontal_sheet, Scene, SceneError};
-use crate::collide::{Body, TriSurface};
+use cloth_collide::{Body, TriSurface};
 use cloth_core::math::Vec3;
 
 /// A square sheet dropped flat onto a sphere at the origin, centred over it.

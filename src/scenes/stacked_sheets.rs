@@ -1,5 +1,5 @@
 use super::{scene_fabric, two_sheets, Scene, SceneError};
-use crate::collide::{Body, TriSurface};
+use cloth_collide::{Body, TriSurface};
 use cloth_core::{math::Vec3, SimulationBuilder};
 
 /// Two square sheets, one a little above the other and turned against it, dropped

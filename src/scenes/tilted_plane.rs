@@ -1,5 +1,5 @@
 use super::{scene_fabric, square_sheet, Scene, SceneError};
-use crate::collide::{Body, TriSurface};
+use cloth_collide::{Body, TriSurface};
 use cloth_core::{math::Vec3, SimulationBuilder};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 

@@ -1,5 +1,5 @@
 use super::{horizontal_sheet, Scene, SceneError};
-use crate::collide::{Body, Motion, TriSurface};
+use cloth_collide::{Body, Motion, TriSurface};
 use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Unit};
 

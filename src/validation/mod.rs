@@ -3,9 +3,9 @@
 //! The integration tests assert on them; `examples/fabric_validation.rs` prints them as a
 //! table.
 
-pub mod cantilever;
 pub mod cusick;
 pub mod elastica;
+pub mod cantilever;
 pub mod hanging_strip;
 
 pub use cantilever::{fixed_angle, Cantilever, CantileverRest, FixedAngle};

@@ -144,7 +144,7 @@ impl ClothMesh {
             Some(p) => points(p, "positions", Some(self.inner.vertex_count()))?,
             None => self.inner.positions().to_vec(),
         };
-        cloth::obj::write_cloth_obj_with_uv(&path, &self.inner, &x).map_err(|e| {
+        cloth::formats::obj::write_cloth_obj_with_uv(&path, &self.inner, &x).map_err(|e| {
             pyo3::exceptions::PyOSError::new_err(format!("cannot write '{}': {e}", path.display()))
         })
     }

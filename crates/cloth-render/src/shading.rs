@@ -2,7 +2,7 @@
 //! camera, so every view is lit the same way. Both sides of a surface are lit (the normal
 //! is turned towards the viewer before shading), so the inside of a garment is not black.
 
-use crate::math::Vec3;
+use cloth_core::math::Vec3;
 
 /// Light that reaches everything: the floor of the brightness of a surface turned away.
 const AMBIENT: f32 = 0.3;

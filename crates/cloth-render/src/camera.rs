@@ -2,7 +2,7 @@
 //! aimed at its centre, then zoomed and shifted on the image plane so that the projection
 //! fills the viewport with a small margin whatever the direction.
 
-use crate::math::Vec3;
+use cloth_core::math::Vec3;
 
 /// The direction the camera looks from. The world has z up and bodies face -y, so azimuth
 /// 0 and elevation 0 look at the front; a positive azimuth moves the camera towards +x

@@ -15,7 +15,7 @@ use super::camera::Camera;
 use super::image::Image;
 use super::shading::{CornerNormals, Lights, BACK_FACE};
 use super::RenderMesh;
-use crate::math::Vec3;
+use cloth_core::math::Vec3;
 use rayon::prelude::*;
 
 /// Samples per pixel along each axis (3 x 3 per pixel).

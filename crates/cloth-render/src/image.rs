@@ -1,7 +1,24 @@
 //! An RGB picture in memory, and its PNG file.
 
-use crate::obj::write_atomically;
+use cloth_formats::atomic::write_atomically;
 use std::path::Path;
+
+/// The picture sizes drawn, pixels a side: smaller has no room for the titles, larger is
+/// surely a typo.
+pub const IMAGE_SIDES: std::ops::RangeInclusive<u32> = 32..=16384;
+
+/// Whether a picture of `width` x `height` pixels can be drawn; if not, why.
+pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
+    if IMAGE_SIDES.contains(&width) && IMAGE_SIDES.contains(&height) {
+        Ok(())
+    } else {
+        Err(format!(
+            "{width} x {height} pixels: each side must be {} to {}",
+            IMAGE_SIDES.start(),
+            IMAGE_SIDES.end()
+        ))
+    }
+}
 
 /// 8-bit RGB pixels, row by row from the top left, 3 bytes each.
 #[derive(Debug, Clone, PartialEq, Eq)]

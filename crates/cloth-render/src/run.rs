@@ -6,9 +6,9 @@ use super::figure::{figure, Panel};
 use super::image::Image;
 use super::legend::Legend;
 use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
-use crate::collide::TriSurface;
-use crate::output::{strain_colour, vertex_means};
-use crate::{math::Vec3, ClothMesh, StrainReport};
+use crate::strain_colours::{strain_colour, vertex_means};
+use cloth_collide::TriSurface;
+use cloth_core::{math::Vec3, ClothMesh, StrainReport};
 
 /// Two panels, "warp strain" and "weft strain", each the bodies in grey and the cloth
 /// coloured per vertex by the mean strain of its triangles (compression shown as 0), with
@@ -59,7 +59,7 @@ pub fn render_run(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::GridBuilder;
+    use cloth_core::GridBuilder;
 
     /// A 1 m sheet hanging in the x-z plane, stretched 3 % along the warp (x) only, with
     /// a sphere behind it.

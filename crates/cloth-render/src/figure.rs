@@ -88,7 +88,7 @@ pub fn figure(panels: &[Panel<'_>], legend: Option<&Legend>, view: &View, width:
         if rect.width == 0 || rect.height == 0 {
             continue;
         }
-        let sets: Vec<&[crate::math::Vec3]> = panel.meshes.iter().map(|m| &m.positions[..]).collect();
+        let sets: Vec<&[cloth_core::math::Vec3]> = panel.meshes.iter().map(|m| &m.positions[..]).collect();
         let camera = Camera::fit(view, &sets, rect.width as f64, rect.height as f64);
         draw(&mut image, rect, &camera, &panel.meshes);
     }
@@ -108,7 +108,7 @@ pub fn figure(panels: &[Panel<'_>], legend: Option<&Legend>, view: &View, width:
 mod tests {
     use super::super::MeshColours;
     use super::*;
-    use crate::math::Vec3;
+    use cloth_core::math::Vec3;
 
     fn box_mesh(colour: [u8; 3]) -> RenderMesh {
         let positions: Vec<Vec3> = (0..8)

@@ -4,7 +4,7 @@
 use super::image::Image;
 use super::raster::Rect;
 use super::text::{draw_text, fit_text, text_width, GLYPH};
-use crate::output::{colour, FULL_SCALE_PERCENT};
+use crate::strain_colours::{colour, FULL_SCALE_PERCENT};
 
 /// A legend for strain coloured as in the PLY output: [`colour`]`(s / FULL_SCALE_PERCENT)`.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -3,7 +3,7 @@
 //! its frames inside it, and every output the scene asks for is written there, the last
 //! good state included when the run fails or is stopped.
 
-use super::{Prepared, RunObserver, RunResult, SceneFile, SceneFileError};
+use crate::scene_file::{Prepared, RunObserver, RunResult, SceneFile, SceneFileError};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, thiserror::Error)]

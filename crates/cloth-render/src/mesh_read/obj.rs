@@ -2,9 +2,9 @@
 //! points and lines dropped, vertex colours (`v x y z r g b`) kept when present.
 
 use super::{Colouring, LoadedMesh};
-use crate::math::Vec3;
-use crate::render::error::RenderError;
-use crate::render::NEUTRAL_GREY;
+use crate::error::RenderError;
+use crate::NEUTRAL_GREY;
+use cloth_core::math::Vec3;
 use std::path::Path;
 
 pub(super) fn read(path: &Path) -> Result<LoadedMesh, RenderError> {

@@ -5,7 +5,7 @@ mod ply;
 
 use super::error::RenderError;
 use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
-use crate::math::Vec3;
+use cloth_core::math::Vec3;
 use std::path::Path;
 
 /// Where a read mesh's colours came from.
@@ -102,7 +102,14 @@ fn check(path: &Path, mesh: &RenderMesh) -> Result<(), RenderError> {
 mod tests {
     use super::super::MeshColours;
     use super::*;
-    use crate::scratch::ScratchFile;
+    use std::io::Write;
+
+    /// `contents` in a temporary file whose name ends in `name` (read by its extension).
+    fn scratch(name: &str, contents: &[u8]) -> tempfile::TempPath {
+        let mut file = tempfile::Builder::new().suffix(name).tempfile().unwrap();
+        file.write_all(contents).unwrap();
+        file.into_temp_path()
+    }
 
     const HEADER: &str =
         "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n";
@@ -114,17 +121,20 @@ mod tests {
              element face 1\nproperty list uchar int vertex_indices\nend_header\n\
              0 0 0 9 9 9 0\n1 0 0 9 9 9 2.5\n1 0 1 9 9 9 5\n0 0 1 9 9 9 7\n4 0 1 2 3\n"
         );
-        let file = ScratchFile::new("strain.ply", text.as_bytes());
+        let file = scratch("strain.ply", text.as_bytes());
         let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::Strain);
         assert!(loaded.wants_legend());
         // A quad is two triangles sharing its first corner.
         assert_eq!(loaded.mesh.triangles, vec![[0, 1, 2], [0, 2, 3]]);
-        assert_eq!(loaded.mesh.positions[2], crate::math::Vec3::new(1.0, 0.0, 1.0));
-        let full = crate::output::FULL_SCALE_PERCENT;
+        assert_eq!(
+            loaded.mesh.positions[2],
+            cloth_core::math::Vec3::new(1.0, 0.0, 1.0)
+        );
+        let full = crate::strain_colours::FULL_SCALE_PERCENT;
         let expected: Vec<[u8; 3]> = [0.0, 2.5, 5.0, 7.0]
             .iter()
-            .map(|s| crate::output::colour(s / full))
+            .map(|s| crate::strain_colours::colour(s / full))
             .collect();
         assert_eq!(loaded.mesh.colours, MeshColours::PerVertex(expected));
     }
@@ -136,7 +146,7 @@ mod tests {
              element face 2\nproperty list uchar uint vertex_index\nend_header\n\
              0 0 0 255 0 0\n1 0 0 0 255 0\n1 0 1 0 0 255\n0 0 1 10 20 30\n3 0 1 2\n3 0 2 3\n"
         );
-        let file = ScratchFile::new("colours.ply", text.as_bytes());
+        let file = scratch("colours.ply", text.as_bytes());
         let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::FromFile);
         assert_eq!(
@@ -160,11 +170,17 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
         for i in [0i32, 1, 2] {
             bytes.extend(i.to_le_bytes());
         }
-        let file = ScratchFile::new("binary.ply", &bytes);
+        let file = scratch("binary.ply", &bytes);
         let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::Plain);
-        assert_eq!(loaded.mesh.positions[1], crate::math::Vec3::new(2.0, 0.0, 0.0));
-        assert_eq!(loaded.mesh.positions[2], crate::math::Vec3::new(0.0, 0.0, 3.0));
+        assert_eq!(
+            loaded.mesh.positions[1],
+            cloth_core::math::Vec3::new(2.0, 0.0, 0.0)
+        );
+        assert_eq!(
+            loaded.mesh.positions[2],
+            cloth_core::math::Vec3::new(0.0, 0.0, 3.0)
+        );
         assert_eq!(loaded.mesh.triangles, vec![[0, 1, 2]]);
     }
 
@@ -178,7 +194,7 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
             ("no-z.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n".to_string(), "z"),
         ];
         for (name, text, place) in cases {
-            let file = ScratchFile::new(name, text.as_bytes());
+            let file = scratch(name, text.as_bytes());
             let message = match read_render_mesh(&file) {
                 Ok(_) => panic!("{name} was accepted"),
                 Err(e) => e.to_string(),
@@ -203,7 +219,7 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
     #[test]
     fn obj_models_are_merged_and_polygons_triangulated() {
         let text = "o a\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\no b\nv 0 1 0\nv 1 1 0\nv 0 1 1\nf 5 6 7\nl 1 5\n";
-        let file = ScratchFile::new("two.obj", text.as_bytes());
+        let file = scratch("two.obj", text.as_bytes());
         let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::Plain);
         assert_eq!(loaded.mesh.positions.len(), 7);
@@ -211,7 +227,7 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
         // The second object's triangle refers to its own corners, after the first's.
         let t = loaded.mesh.triangles[2];
         assert!(t.iter().all(|&i| loaded.mesh.positions[i].y == 1.0), "{t:?}");
-        let bad = ScratchFile::new("bad.obj", b"v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+        let bad = scratch("bad.obj", b"v 0 0 0\nv 1 0 0\nf 1 2 3\n");
         let e = read_render_mesh(&bad).unwrap_err().to_string();
         assert!(e.contains("bad.obj"), "{e}");
     }
@@ -219,7 +235,7 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
     #[test]
     fn obj_vertex_colours_are_kept() {
         let text = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 0 1 0 0 1\nf 1 2 3\n";
-        let file = ScratchFile::new("coloured.obj", text.as_bytes());
+        let file = scratch("coloured.obj", text.as_bytes());
         let loaded = read_render_mesh(&file).unwrap();
         assert_eq!(loaded.colouring, Colouring::FromFile);
         let MeshColours::PerVertex(c) = &loaded.mesh.colours else {

@@ -4,10 +4,10 @@
 //! scale; otherwise red, green and blue are used if present.
 
 use super::{Colouring, LoadedMesh};
-use crate::collide::surface::ply_number;
-use crate::math::Vec3;
-use crate::output::strain_colour;
-use crate::render::error::RenderError;
+use crate::error::RenderError;
+use crate::strain_colours::strain_colour;
+use cloth_collide::surface::ply_number;
+use cloth_core::math::Vec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Property, PropertyType};
 use std::path::Path;
