@@ -3,6 +3,7 @@
 //! implicit Euler at h = 1/60 s. Target: one implicit step in at most 20 ms median on
 //! 2 cores (the source needed 8 to 12 s). Run with `cargo bench --bench step`.
 
+use cloth::parallelism::Parallelism;
 use cloth::{math::Vec3, Fabric, GridBuilder, Pin, Simulation, SimulationBuilder};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -40,7 +41,7 @@ fn benches(c: &mut Criterion) {
     let x: Vec<Vec3> = (0..a.n()).map(|i| Vec3::new(i as f64, 1.0, -0.5)).collect();
     let mut y = vec![Vec3::zeros(); a.n()];
     group.bench_function("matrix_vector_product", |b| {
-        b.iter(|| a.mul(black_box(&x), &mut y, true))
+        b.iter(|| a.mul(black_box(&x), &mut y, Parallelism::Rayon))
     });
 
     // Consecutive steps of the falling sheet: the median is a typical step of the run.

@@ -12,6 +12,7 @@
 
 // Bottom-up: each module uses only those above it.
 pub mod math;
+pub mod parallelism;
 mod spatial;
 pub mod error;
 pub mod mesh;

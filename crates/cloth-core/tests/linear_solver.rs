@@ -3,6 +3,7 @@
 
 use cloth_core::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg, PcgSettings, Preconditioner};
 use cloth_core::math::{Mat3, Vec3};
+use cloth_core::parallelism::Parallelism;
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Side;
@@ -78,7 +79,7 @@ fn pcg_agrees_with_sparse_cholesky() {
             .map(|_| Vec3::from_fn(|_, _| rng.random_range(-1.0..1.0)))
             .collect();
         let direct = direct_solve(&a, &b);
-        for (parallel, preconditioner) in [false, true]
+        for (par, preconditioner) in [Parallelism::Sequential, Parallelism::Rayon]
             .into_iter()
             .flat_map(|p| PRECONDITIONERS.map(|c| (p, c)))
         {
@@ -89,7 +90,15 @@ fn pcg_agrees_with_sparse_cholesky() {
                 preconditioner,
             };
             let out = Pcg::new(n)
-                .solve(&a, &Filter::new(n, 0), &b, &mut x, &settings, 0.0, parallel)
+                .solve(
+                    &a,
+                    &Filter::new(n, 0),
+                    &b,
+                    &mut x,
+                    &settings,
+                    0.0,
+                    par,
+                )
                 .unwrap();
             assert!(out.converged && out.rel_residual <= 1e-12, "{out:?}");
             let err = max_diff(&x, &direct) / max_norm(&direct);
@@ -125,14 +134,14 @@ fn iteration_limit(preconditioner: Preconditioner) {
                 preconditioner,
             },
             0.0,
-            false,
+            Parallelism::Sequential,
         )
         .unwrap();
     assert!(!out.converged);
     assert_eq!(out.iterations, 3);
     // The reported residual is the true one of the returned iterate.
     let mut ax = vec![Vec3::zeros(); 200];
-    a.mul(&x, &mut ax, false);
+    a.mul(&x, &mut ax, Parallelism::Sequential);
     let r: f64 = ax
         .iter()
         .zip(&b)
@@ -190,7 +199,7 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
     let mut z = vec![Vec3::zeros(); n];
     filter.velocity_change(&v0, &mut z);
     let mut az = vec![Vec3::zeros(); n];
-    a.mul(&z, &mut az, false);
+    a.mul(&z, &mut az, Parallelism::Sequential);
     let mut rhs: Vec<Vec3> = b.iter().zip(&az).map(|(b, az)| b - az).collect();
     filter.project(&mut rhs);
     for preconditioner in PRECONDITIONERS {
@@ -224,7 +233,7 @@ fn check_filtered_solve(
                 preconditioner,
             },
             0.0,
-            true,
+            Parallelism::Rayon,
         )
         .unwrap();
     assert!(out.converged);
@@ -244,7 +253,7 @@ fn check_filtered_solve(
     }
     // Free components satisfy the equations: S (A dv - b) = 0.
     let mut adv = vec![Vec3::zeros(); n];
-    a.mul(&dv, &mut adv, false);
+    a.mul(&dv, &mut adv, Parallelism::Sequential);
     let mut residual: Vec<Vec3> = adv.iter().zip(b).map(|(l, r)| l - r).collect();
     filter.project(&mut residual);
     assert!(

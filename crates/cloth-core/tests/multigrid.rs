@@ -6,6 +6,7 @@
 use cloth_core::linalg::{
     BlockSparse, Constraint, ConstraintKind, Filter, Multigrid, Pcg, PcgSettings, Preconditioner, Setup,
 };
+use cloth_core::parallelism::Parallelism;
 use cloth_core::{math::Mat3, math::Vec3, Fabric, GridBuilder, Pin, SimulationBuilder};
 use nalgebra::DMatrix;
 
@@ -59,7 +60,7 @@ fn dense_preconditioner(m: &Multigrid, a: &BlockSparse, filter: &Filter) -> DMat
         e.iter_mut().for_each(|v| *v = Vec3::zeros());
         e[k / 3][k % 3] = 1.0;
         filter.project(&mut e);
-        m.apply(a, filter, &e, &mut out, false);
+        m.apply(a, filter, &e, &mut out, Parallelism::Sequential);
         for (i, v) in out.iter().enumerate() {
             dense.fixed_view_mut::<3, 1>(3 * i, k).copy_from(v);
         }
@@ -74,7 +75,7 @@ fn multigrid_cycle_is_symmetric_and_definite_on_the_free_space() {
     let filter = some_constraints(n);
     let mut m = Multigrid::new(&a);
     assert!(m.depth() >= 2, "196 particles make more than the coarsest level");
-    m.build(&a, &filter, false).expect("build");
+    m.build(&a, &filter, Parallelism::Sequential).expect("build");
     // The constrained directions are mapped to zero, and the free space onto itself with
     // positive eigenvalues: adding the identity on the constrained directions gives an SPD
     // matrix.
@@ -142,8 +143,10 @@ fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
         without.blocks_mut()[d] -= nalgebra::Matrix3::identity() * 0.5;
     }
     let mut m = Multigrid::new(&with_drag);
-    m.build(&with_drag, &held, false).expect("build");
-    m.refresh_finest(&without, &let_go, false).expect("refresh");
+    m.build(&with_drag, &held, Parallelism::Sequential)
+        .expect("build");
+    m.refresh_finest(&without, &let_go, Parallelism::Sequential)
+        .expect("refresh");
     assert_symmetric_definite(&m, &without, &let_go);
 
     let b: Vec<Vec3> = (0..n)
@@ -158,7 +161,7 @@ fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
         filter.project(&mut rhs);
         filter.project(x);
         let out = pcg
-            .solve_with(a, filter, &rhs, x, &settings, 0.0, false, setup)
+            .solve_with(a, filter, &rhs, x, &settings, 0.0, Parallelism::Sequential, setup)
             .expect("solve");
         assert!(out.converged, "{out:?}");
         out.iterations
@@ -200,14 +203,39 @@ fn a_refined_solve_reaches_the_tight_answer() {
     let mut pcg = Pcg::new(n);
     let mut x = vec![Vec3::zeros(); n];
     let loose = pcg
-        .solve(&a, &filter, &b, &mut x, &settings(1e-2), 0.0, false)
+        .solve(
+            &a,
+            &filter,
+            &b,
+            &mut x,
+            &settings(1e-2),
+            0.0,
+            Parallelism::Sequential,
+        )
         .expect("solve");
     let refined = pcg
-        .solve_with(&a, &filter, &b, &mut x, &settings(1e-10), 0.0, false, Setup::Keep)
+        .solve_with(
+            &a,
+            &filter,
+            &b,
+            &mut x,
+            &settings(1e-10),
+            0.0,
+            Parallelism::Sequential,
+            Setup::Keep,
+        )
         .expect("solve");
     let mut expected = vec![Vec3::zeros(); n];
     let direct = Pcg::new(n)
-        .solve(&a, &filter, &b, &mut expected, &settings(1e-10), 0.0, false)
+        .solve(
+            &a,
+            &filter,
+            &b,
+            &mut expected,
+            &settings(1e-10),
+            0.0,
+            Parallelism::Sequential,
+        )
         .expect("solve");
     assert!(refined.converged && direct.converged);
     assert_close(&x, &expected, 1e-7, "refined");
@@ -236,7 +264,7 @@ fn multigrid_is_exact_on_a_system_it_factors_whole() {
         ..Default::default()
     };
     let out = Pcg::new(a.n())
-        .solve(&a, &filter, &rhs, &mut x, &settings, 0.0, false)
+        .solve(&a, &filter, &rhs, &mut x, &settings, 0.0, Parallelism::Sequential)
         .expect("solve");
     assert!(out.converged && out.iterations <= 1, "{out:?}");
 }
@@ -250,17 +278,23 @@ fn a_rebuilt_hierarchy_is_the_one_built_afresh() {
         let mut rhs = b.clone();
         filter.project(&mut rhs);
         let mut x = vec![Vec3::zeros(); n];
-        m.apply(a, filter, &rhs, &mut x, false);
+        m.apply(a, filter, &rhs, &mut x, Parallelism::Sequential);
         x
     };
     // Built for one matrix and filter, then for another: the same as built for the second
     // only (the dense factor is remade in the storage of the first).
     let mut reused = Multigrid::new(&first);
-    reused.build(&first, &some_constraints(n), false).expect("build");
+    reused
+        .build(&first, &some_constraints(n), Parallelism::Sequential)
+        .expect("build");
     let filter = Filter::new(n, 0);
-    reused.build(&second, &filter, false).expect("rebuild");
+    reused
+        .build(&second, &filter, Parallelism::Sequential)
+        .expect("rebuild");
     let mut fresh = Multigrid::new(&first);
-    fresh.build(&second, &filter, false).expect("build");
+    fresh
+        .build(&second, &filter, Parallelism::Sequential)
+        .expect("build");
     assert_eq!(run(&reused, &second, &filter), run(&fresh, &second, &filter));
 }
 
@@ -296,7 +330,7 @@ fn a_hierarchy_rebuilt_for_other_contacts_is_the_one_built_afresh() {
         let mut rhs = b.clone();
         filter.project(&mut rhs);
         let mut x = vec![Vec3::zeros(); n];
-        m.apply(a, &filter, &rhs, &mut x, false);
+        m.apply(a, &filter, &rhs, &mut x, Parallelism::Sequential);
         x
     };
     // Contacts on some pairs, then on others, then none, then on the last pairs again
@@ -306,7 +340,11 @@ fn a_hierarchy_rebuilt_for_other_contacts_is_the_one_built_afresh() {
     // them there, 123 and 125 iterations against 51 and 52 apart.
     let mut reused = Multigrid::new(&first);
     reused
-        .build(&with_contacts(&first, 3, 20, 50.0), &filter, false)
+        .build(
+            &with_contacts(&first, 3, 20, 50.0),
+            &filter,
+            Parallelism::Sequential,
+        )
         .expect("build");
     for next in [
         with_contacts(&second, 30, 40, 50.0),
@@ -315,9 +353,13 @@ fn a_hierarchy_rebuilt_for_other_contacts_is_the_one_built_afresh() {
         with_contacts(&second, 0, 10, 50.0),
         with_contacts(&second, 0, 10, 200.0),
     ] {
-        reused.build(&next, &filter, false).expect("rebuild");
+        reused
+            .build(&next, &filter, Parallelism::Sequential)
+            .expect("rebuild");
         let mut fresh = Multigrid::new(&second);
-        fresh.build(&next, &filter, false).expect("build");
+        fresh
+            .build(&next, &filter, Parallelism::Sequential)
+            .expect("build");
         let (x, y) = (run(&reused, &next), run(&fresh, &next));
         assert_eq!(x, y);
     }
@@ -335,10 +377,18 @@ fn multigrid_handles_a_single_particle_and_a_fully_pinned_sheet() {
         ..Default::default()
     };
     let out = Pcg::new(1)
-        .solve(&a, &Filter::new(1, 0), &b, &mut x, &settings, 0.0, false)
+        .solve(
+            &a,
+            &Filter::new(1, 0),
+            &b,
+            &mut x,
+            &settings,
+            0.0,
+            Parallelism::Sequential,
+        )
         .expect("solve");
     let mut ax = [Vec3::zeros()];
-    a.mul(&x, &mut ax, false);
+    a.mul(&x, &mut ax, Parallelism::Sequential);
     assert!(out.converged && (ax[0] - b[0]).norm() < 1e-12, "{out:?}");
 
     // Every particle of a sheet large enough for coarse levels pinned: nothing is free,
@@ -358,7 +408,7 @@ fn multigrid_handles_a_single_particle_and_a_fully_pinned_sheet() {
     let b = vec![Vec3::zeros(); n];
     let mut x = vec![Vec3::zeros(); n];
     let out = Pcg::new(n)
-        .solve(&a, &filter, &b, &mut x, &settings, 1e-12, false)
+        .solve(&a, &filter, &b, &mut x, &settings, 1e-12, Parallelism::Sequential)
         .expect("solve");
     assert!(out.converged && x.iter().all(|v| *v == Vec3::zeros()), "{out:?}");
 }
@@ -373,7 +423,7 @@ fn iterations_for(a: &BlockSparse, b: &[Vec3], preconditioner: Preconditioner) -
         preconditioner,
     };
     let out = Pcg::new(a.n())
-        .solve(a, &filter, b, &mut x, &settings, 0.0, true)
+        .solve(a, &filter, b, &mut x, &settings, 0.0, Parallelism::Rayon)
         .expect("solve");
     assert!(out.converged, "{preconditioner:?} on {} nodes: {out:?}", a.n());
     out.iterations

@@ -10,6 +10,7 @@ pub use particle_contacts::{ContactMode, PassThrough, SLIP_SPEED};
 
 use crate::math::Vec3;
 use crate::mesh::ClothMesh;
+use crate::parallelism::Parallelism;
 use std::sync::Arc;
 
 /// The cloth's edges through the bodies' triangles, counted edge-triangle pair by pair as
@@ -212,13 +213,13 @@ impl Contacts {
         x_new: &mut [Vec3],
         v_new: &mut [Vec3],
         pinned: &[bool],
-        parallel: bool,
+        par: Parallelism,
     ) -> ContactCounts {
         self.particles.finish(v_new);
         let collider = self.collider.as_ref();
         let sweep = self
             .particles
-            .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, parallel);
+            .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, par);
         let particles = &self.particles;
         // Only the features' pushes need the positions before them.
         self.solved.clear();

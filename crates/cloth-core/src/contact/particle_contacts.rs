@@ -5,6 +5,7 @@
 use super::{Collider, Proximity, SurfacePoint};
 use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter};
 use crate::math::{Mat3, Vec3};
+use crate::parallelism::Parallelism;
 use rayon::prelude::*;
 
 /// A particle closer to the surface than `(1 + CONTACT_BAND) * thickness` is in contact.
@@ -236,7 +237,7 @@ impl ParticleContacts {
     }
 
     /// Queries every particle afresh (at the start, or after positions were set).
-    pub fn refresh(&mut self, collider: &dyn Collider, t: f64, x: &[Vec3], parallel: bool) {
+    pub fn refresh(&mut self, collider: &dyn Collider, t: f64, x: &[Vec3], par: Parallelism) {
         let reach = self.reach;
         let query = |(s, xi): (&mut ParticleState, &Vec3)| {
             s.proximity = sweep_for(collider, s.passing, (t, xi), (t, xi), f64::INFINITY, reach);
@@ -244,7 +245,7 @@ impl ParticleContacts {
             s.released = false;
             s.demand_known = false;
         };
-        if parallel {
+        if par.is_rayon() {
             self.state.par_iter_mut().zip(x).for_each(query);
         } else {
             self.state.iter_mut().zip(x).for_each(query);
@@ -491,7 +492,7 @@ impl ParticleContacts {
         x_new: &mut [Vec3],
         v_new: &mut [Vec3],
         pinned: &[bool],
-        parallel: bool,
+        par: Parallelism,
     ) -> SweepCounts {
         let reach = self.reach;
         let body_motion = collider.motion_bound(t0, t1);
@@ -546,7 +547,7 @@ impl ParticleContacts {
             corrected: a.corrected + b.corrected,
             crossings: a.crossings + b.crossings,
         };
-        let counts = if parallel {
+        let counts = if par.is_rayon() {
             self.state
                 .par_iter_mut()
                 .zip(x)

@@ -9,6 +9,7 @@
 use super::row_chunks::{for_each_entry, for_each_row};
 use super::transient::Transient;
 use crate::math::{Mat3, Vec3};
+use crate::parallelism::Parallelism;
 
 /// The default is a matrix of no rows, for a pattern to be set into
 /// ([`BlockSparse::set_pattern`]).
@@ -138,18 +139,18 @@ impl BlockSparse {
         &mut self.blocks
     }
 
-    /// Sets the values row by row, in parallel when `parallel`: `f(r, first, blocks)` gets
+    /// Sets the values row by row, on rayon's pool when `par` says so: `f(r, first, blocks)` gets
     /// row `r`'s blocks, the first of them at storage slot `first`.
-    pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, usize, &mut [Mat3]) + Sync) {
-        for_each_row(&self.row_ptr, &mut self.blocks, parallel, f);
+    pub fn fill_rows(&mut self, par: Parallelism, f: impl Fn(usize, usize, &mut [Mat3]) + Sync) {
+        for_each_row(&self.row_ptr, &mut self.blocks, par, f);
     }
 
     /// Zeroes every block but the diagonal ones, which become `diagonal(r)`, and drops the
-    /// transient couplings; in parallel when `parallel`.
-    pub fn reset(&mut self, parallel: bool, diagonal: impl Fn(usize) -> Mat3 + Sync) {
+    /// transient couplings; on rayon's pool when `par` says so.
+    pub fn reset(&mut self, par: Parallelism, diagonal: impl Fn(usize) -> Mat3 + Sync) {
         self.transient.clear();
         let diag = &self.diag;
-        for_each_row(&self.row_ptr, &mut self.blocks, parallel, |r, first, row| {
+        for_each_row(&self.row_ptr, &mut self.blocks, par, |r, first, row| {
             row.fill(Mat3::zeros());
             row[diag[r] as usize - first] = diagonal(r);
         });
@@ -168,9 +169,9 @@ impl BlockSparse {
         }
     }
 
-    /// `y = A x`, in parallel over rows when `parallel`.
-    pub fn mul(&self, x: &[Vec3], y: &mut [Vec3], parallel: bool) {
-        self.mul_then(x, y, parallel, |_, s| s);
+    /// `y = A x`, over rows on rayon's pool when `par` says so.
+    pub fn mul(&self, x: &[Vec3], y: &mut [Vec3], par: Parallelism) {
+        self.mul_then(x, y, par, |_, s| s);
     }
 
     /// `y_r = f(r, (A x)_r)`: a product whose rows are post-processed in the same pass.
@@ -178,15 +179,15 @@ impl BlockSparse {
         &self,
         x: &[Vec3],
         y: &mut [Vec3],
-        parallel: bool,
+        par: Parallelism,
         f: impl Fn(usize, Vec3) -> Vec3 + Sync,
     ) {
         debug_assert_eq!(x.len(), self.n());
         debug_assert_eq!(y.len(), self.n());
         if self.transient.is_empty() {
-            for_each_entry(y, parallel, |r, yr| *yr = f(r, self.fixed_row_product(r, x)));
+            for_each_entry(y, par, |r, yr| *yr = f(r, self.fixed_row_product(r, x)));
         } else {
-            for_each_entry(y, parallel, |r, yr| *yr = f(r, self.row_product(r, x)));
+            for_each_entry(y, par, |r, yr| *yr = f(r, self.row_product(r, x)));
         }
     }
 
@@ -246,10 +247,10 @@ impl BlockSparse {
     }
 
     /// Sets every block to `a`'s, its transient couplings added in; this pattern must hold
-    /// both of `a`'s (see [`BlockSparse::union_row`]). In parallel when `parallel`.
-    pub(super) fn set_folded(&mut self, a: &BlockSparse, parallel: bool) {
+    /// both of `a`'s (see [`BlockSparse::union_row`]). On rayon's pool when `par` says so.
+    pub(super) fn set_folded(&mut self, a: &BlockSparse, par: Parallelism) {
         let cols = &self.cols;
-        for_each_row(&self.row_ptr, &mut self.blocks, parallel, |r, first, row| {
+        for_each_row(&self.row_ptr, &mut self.blocks, par, |r, first, row| {
             let row_cols = &cols[first..first + row.len()];
             let at = |c: u32| {
                 row_cols

@@ -4,6 +4,7 @@
 use super::row_chunks::for_each_entry;
 use super::{BlockSparse, Filter};
 use crate::math::Mat3;
+use crate::parallelism::Parallelism;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The inverses of the diagonal blocks of `a`, filtered by `filter` if given, or the
@@ -12,10 +13,10 @@ pub(crate) fn inverse_diagonal(
     a: &BlockSparse,
     filter: Option<&Filter>,
     out: &mut [Mat3],
-    parallel: bool,
+    par: Parallelism,
 ) -> Result<(), usize> {
     let failed = AtomicUsize::new(usize::MAX);
-    for_each_entry(out, parallel, |r, inv| {
+    for_each_entry(out, par, |r, inv| {
         let d = a.smoother_diagonal(r);
         let d = filter.map_or(d, |f| f.filtered_diagonal(r, &d));
         match spd_inverse(&d) {

@@ -6,6 +6,7 @@
 use super::diagonal_inverse::inverse_diagonal;
 use super::{BlockSparse, Filter, Multigrid};
 use crate::math::{Mat3, Vec3};
+use crate::parallelism::Parallelism;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::matrix_free::conjugate_gradient::{
     conjugate_gradient, conjugate_gradient_scratch, CgError, CgInfo, CgParams,
@@ -109,11 +110,11 @@ impl<F: Fn(&[Vec3], &mut [Vec3]) + Sync> Precond<f64> for BlockMap<F> {}
 fn filtered_product<'a>(
     a: &'a BlockSparse,
     filter: &'a Filter,
-    parallel: bool,
+    par: Parallelism,
 ) -> BlockMap<impl Fn(&[Vec3], &mut [Vec3]) + Sync + Copy + 'a> {
     BlockMap {
         n: a.n(),
-        f: move |x: &[Vec3], y: &mut [Vec3]| a.mul_then(x, y, parallel, |r, v| filter.project_row(r, v)),
+        f: move |x: &[Vec3], y: &mut [Vec3]| a.mul_then(x, y, par, |r, v| filter.project_row(r, v)),
     }
 }
 
@@ -207,7 +208,7 @@ impl Pcg {
         let filter = Filter::new(n.max(1), 0);
         let req = conjugate_gradient_scratch(
             block_jacobi(&inv_diag),
-            filtered_product(&a, &filter, false),
+            filtered_product(&a, &filter, Parallelism::Sequential),
             1,
             Par::Seq,
         );
@@ -224,7 +225,7 @@ impl Pcg {
     /// Solves the filtered system `(S A S + I - S) x = b` for SPD `A` (see [`Filter`]),
     /// starting from the `x` given, to `settings` or to an absolute residual
     /// `abs_tolerance`, whichever is looser. `b` and `x` must be projected (`S b = b`,
-    /// `S x = x`). The operator runs in parallel when `parallel`; faer's own vector work
+    /// `S x = x`). The operator runs on rayon's pool when `par` says so; faer's own vector work
     /// stays sequential so the result does not depend on the number of threads.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
@@ -235,9 +236,9 @@ impl Pcg {
         x: &mut [Vec3],
         settings: &PcgSettings,
         abs_tolerance: f64,
-        parallel: bool,
+        par: Parallelism,
     ) -> Result<PcgOutcome, String> {
-        self.solve_with(a, filter, b, x, settings, abs_tolerance, parallel, Setup::Build)
+        self.solve_with(a, filter, b, x, settings, abs_tolerance, par, Setup::Build)
     }
 
     /// As [`Pcg::solve`], keeping as much of the last solve's preconditioner as `setup`
@@ -251,7 +252,7 @@ impl Pcg {
         x: &mut [Vec3],
         settings: &PcgSettings,
         abs_tolerance: f64,
-        parallel: bool,
+        par: Parallelism,
         setup: Setup,
     ) -> Result<PcgOutcome, String> {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
@@ -265,19 +266,19 @@ impl Pcg {
             max_iters: settings.max_iterations,
             ..Default::default()
         };
-        let operator = filtered_product(a, filter, parallel);
+        let operator = filtered_product(a, filter, par);
         let mut result = None;
         if settings.preconditioner == Preconditioner::Multigrid {
             match (&mut self.multigrid, setup) {
                 (Some(m), Setup::Keep) if m.fits(a) => {}
-                (Some(m), Setup::RefreshFinest) if m.fits(a) => m.refresh_finest(a, filter, parallel)?,
-                (Some(m), _) if m.fits(a) => m.build(a, filter, parallel)?,
-                (slot, _) => slot.insert(Multigrid::new(a)).build(a, filter, parallel)?,
+                (Some(m), Setup::RefreshFinest) if m.fits(a) => m.refresh_finest(a, filter, par)?,
+                (Some(m), _) if m.fits(a) => m.build(a, filter, par)?,
+                (slot, _) => slot.insert(Multigrid::new(a)).build(a, filter, par)?,
             }
             let multigrid = self.multigrid.as_ref().expect("made above");
             let cycle = BlockMap {
                 n: a.n(),
-                f: |x: &[Vec3], y: &mut [Vec3]| multigrid.apply(a, filter, x, y, parallel),
+                f: |x: &[Vec3], y: &mut [Vec3]| multigrid.apply(a, filter, x, y, par),
             };
             let rhs = self.rhs.as_ref();
             match run_cg(self.sol.as_mut(), cycle, operator, rhs, params, &mut self.buffer) {
@@ -293,7 +294,7 @@ impl Pcg {
         let result = match result {
             Some(result) => result,
             None => {
-                inverse_diagonal(a, Some(filter), &mut self.inv_diag, parallel)
+                inverse_diagonal(a, Some(filter), &mut self.inv_diag, par)
                     .map_err(|r| format!("diagonal block of particle {r} is not positive definite"))?;
                 let precond = block_jacobi(&self.inv_diag);
                 let rhs = self.rhs.as_ref();

@@ -1,18 +1,20 @@
 //! Parallel work over the rows of a vector or of a compressed-row array. Each row is
 //! written by one task only, so results do not depend on the number of threads.
 
+use crate::parallelism::Parallelism;
+
 /// Rows per parallel task.
 const ROWS_PER_TASK: usize = 512;
 
-/// `f(i, &mut out[i])` for every row, in parallel when `parallel`.
-pub(crate) fn for_each_entry<T: Send>(out: &mut [T], parallel: bool, f: impl Fn(usize, &mut T) + Sync) {
+/// `f(i, &mut out[i])` for every row, on rayon's pool when `par` says so.
+pub(crate) fn for_each_entry<T: Send>(out: &mut [T], par: Parallelism, f: impl Fn(usize, &mut T) + Sync) {
     let run = |(task, chunk): (usize, &mut [T])| {
         let first = task * ROWS_PER_TASK;
         for (k, entry) in chunk.iter_mut().enumerate() {
             f(first + k, entry);
         }
     };
-    if parallel {
+    if par.is_rayon() {
         use rayon::prelude::*;
         out.par_chunks_mut(ROWS_PER_TASK).enumerate().for_each(run);
     } else {
@@ -21,18 +23,18 @@ pub(crate) fn for_each_entry<T: Send>(out: &mut [T], parallel: bool, f: impl Fn(
 }
 
 /// `f(r, first, values)` for every row `r` of `data` laid out by `row_ptr` (which starts at
-/// 0), `values` being the row's part, the first of them at index `first`; in parallel when
-/// `parallel`. Rows have different lengths, so the split is by halves through
+/// 0), `values` being the row's part, the first of them at index `first`; on rayon's pool when
+/// `par` says so. Rows have different lengths, so the split is by halves through
 /// `rayon::join`, which keeps its jobs on the stack: nothing is allocated.
 pub(crate) fn for_each_row<T: Send>(
     row_ptr: &[usize],
     data: &mut [T],
-    parallel: bool,
+    par: Parallelism,
     f: impl Fn(usize, usize, &mut [T]) + Sync,
 ) {
     let n = row_ptr.len() - 1;
     let data = &mut data[..row_ptr[n]];
-    if parallel {
+    if par.is_rayon() {
         split(row_ptr, 0, n, data, &f);
     } else {
         rows(row_ptr, 0, n, data, &f);

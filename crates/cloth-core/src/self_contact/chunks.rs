@@ -3,6 +3,7 @@
 //! so the list is the same for any number of threads and nothing is allocated once the
 //! buffers have grown to what the cloth needs.
 
+use crate::parallelism::Parallelism;
 use rayon::prelude::*;
 
 /// Items searched per chunk.
@@ -20,12 +21,12 @@ impl<T> Default for ChunkedSearch<T> {
 }
 
 impl<T: Send + Copy> ChunkedSearch<T> {
-    /// Calls `search(item, found)` for every item in `items`, in parallel when `parallel`,
+    /// Calls `search(item, found)` for every item in `items`, on rayon's pool when `par` says so,
     /// and writes what they found, in item order, into `out` (cleared first).
     pub fn run<I: Copy + Sync>(
         &mut self,
         items: &[I],
-        parallel: bool,
+        par: Parallelism,
         out: &mut Vec<T>,
         search: impl Fn(I, &mut Vec<T>) + Sync,
     ) {
@@ -40,7 +41,7 @@ impl<T: Send + Copy> ChunkedSearch<T> {
             }
         };
         let buffers = &mut self.buffers[..chunks];
-        if parallel {
+        if par.is_rayon() {
             items
                 .par_chunks(ITEMS_PER_CHUNK)
                 .zip(buffers.par_iter_mut())

@@ -62,6 +62,7 @@ use crate::energy::Local;
 use crate::linalg::BlockSparse;
 use crate::math::{Mat3, Vec3};
 use crate::mesh::ClothMesh;
+use crate::parallelism::Parallelism;
 use crate::spatial::Aabb;
 use ccd::Impact;
 use chunks::ChunkedSearch;
@@ -280,7 +281,7 @@ impl SelfContacts {
         pinned: &[bool],
         h: f64,
         implicit: bool,
-        parallel: bool,
+        par: Parallelism,
     ) {
         let step = implicit.then_some(h);
         let topo = &self.topology;
@@ -311,7 +312,7 @@ impl SelfContacts {
         };
         let surface = &self.surface;
         self.contact_search
-            .run(&surface.tasks, parallel, &mut self.contacts, |task, found| {
+            .run(&surface.tasks, par, &mut self.contacts, |task, found| {
                 surface.triangle_pairs(task, &search, |s, t| {
                     // A triangle's own particles and edges are exempt from it.
                     if s == t {

@@ -9,6 +9,7 @@ use super::surface::Search;
 use super::topology::find;
 use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
 use crate::math::Vec3;
+use crate::parallelism::Parallelism;
 use crate::spatial::Aabb;
 
 /// What the impact passes did in one step.
@@ -101,7 +102,7 @@ impl SelfContacts {
         &mut self,
         mut end: StepEnd<'_>,
         budget: Option<usize>,
-        parallel: bool,
+        par: Parallelism,
         stop: impl Fn() -> bool + Sync,
     ) -> ImpactCounts {
         let mut counts = ImpactCounts::default();
@@ -114,7 +115,7 @@ impl SelfContacts {
             // Pairs ending too close are put right by impulses only; zones and the last
             // resort are for pairs passing through each other.
             let impulses = pass < IMPULSE_PASSES;
-            self.find_impacts(end.x0, end.x1, pass == 0, impulses, parallel, &stop);
+            self.find_impacts(end.x0, end.x1, pass == 0, impulses, par, &stop);
             if stop() {
                 break;
             }
@@ -199,7 +200,7 @@ impl SelfContacts {
         x1: &[Vec3],
         full: bool,
         closing: bool,
-        parallel: bool,
+        par: Parallelism,
         stop: &(impl Fn() -> bool + Sync),
     ) {
         let topo = &self.topology;
@@ -248,7 +249,7 @@ impl SelfContacts {
         let surface = &self.surface;
         let mut impacts = std::mem::take(&mut self.response.impacts);
         self.impact_search
-            .run(&surface.tasks, parallel, &mut impacts, |task, found| {
+            .run(&surface.tasks, par, &mut impacts, |task, found| {
                 if stop() {
                     return;
                 }

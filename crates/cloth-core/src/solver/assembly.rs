@@ -19,6 +19,7 @@ use crate::fabric::{BendingLaw, Fabric};
 use crate::linalg::BlockSparse;
 use crate::math::{Mat3, Vec3};
 use crate::mesh::ClothMesh;
+use crate::parallelism::Parallelism;
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -332,7 +333,7 @@ impl ForceModel {
         force: &mut [Vec3],
         hv: &mut [Vec3],
         mut stiffness: Option<StiffnessTarget<'_>>,
-        parallel: bool,
+        par: Parallelism,
     ) -> f64 {
         let need_k = stiffness.is_some() || self.max_damping > 0.0 || self.seam_pull.damping > 0.0;
         let mode = if need_k {
@@ -348,7 +349,7 @@ impl ForceModel {
             }
             *h = Vec3::zeros();
         };
-        if parallel {
+        if par.is_rayon() {
             force
                 .par_iter_mut()
                 .zip(hv.par_iter_mut())
@@ -396,14 +397,14 @@ impl ForceModel {
             &self.tris,
             &self.tri_colors,
             &mut self.tri_energy,
-            parallel,
+            par,
             tri_kernel,
         );
         run_colored(
             &self.hinges,
             &self.hinge_colors,
             &mut self.hinge_energy,
-            parallel,
+            par,
             hinge_kernel,
         );
         let pull = self.seam_pull;
@@ -438,7 +439,7 @@ impl ForceModel {
                 &self.seams,
                 &self.seam_colors,
                 &mut self.seam_energy,
-                parallel,
+                par,
                 seam_kernel,
             );
         } else {
@@ -461,7 +462,7 @@ impl ForceModel {
             &self.attachments,
             &self.attachment_colors,
             &mut self.attachment_energy,
-            parallel,
+            par,
             attachment_kernel,
         );
 
@@ -567,12 +568,12 @@ fn run_colored<E: Sync>(
     elements: &[E],
     colors: &[Range<usize>],
     energy: &mut [f64],
-    parallel: bool,
+    par: Parallelism,
     kernel: impl Fn(&E, &mut f64) + Sync,
 ) {
     for range in colors {
         let (els, en) = (&elements[range.clone()], &mut energy[range.clone()]);
-        if parallel {
+        if par.is_rayon() {
             els.par_chunks(ELEMENTS_PER_TASK)
                 .zip(en.par_chunks_mut(ELEMENTS_PER_TASK))
                 .for_each(|(es, ens)| es.iter().zip(ens).for_each(|(e, en)| kernel(e, en)));
@@ -784,11 +785,29 @@ mod tests {
         let n = x.len();
         let (g, wind, still) = (Vec3::new(0.0, 0.0, -9.81), Vec3::zeros(), vec![Vec3::zeros(); n]);
         let (mut f, mut hv) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
-        model.evaluate(&x, &still, &g, &wind, &mut f, &mut hv, None, false);
+        model.evaluate(
+            &x,
+            &still,
+            &g,
+            &wind,
+            &mut f,
+            &mut hv,
+            None,
+            Parallelism::Sequential,
+        );
         let scale = f.iter().map(|f| f.norm()).fold(0.0, f64::max);
         let energy = |model: &mut ForceModel, x: &[Vec3]| {
             let (mut f, mut hv) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
-            model.evaluate(x, &still, &g, &wind, &mut f, &mut hv, None, false)
+            model.evaluate(
+                x,
+                &still,
+                &g,
+                &wind,
+                &mut f,
+                &mut hv,
+                None,
+                Parallelism::Sequential,
+            )
         };
         let h = 1e-7;
         for i in 0..n {
@@ -824,7 +843,7 @@ mod tests {
                 matrix: &mut matrix,
                 h: 1.0,
             }),
-            true,
+            Parallelism::Rayon,
         );
         // The same sum, element by element, in dense form.
         let mut dense = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
@@ -917,7 +936,7 @@ mod tests {
         );
         // K v returned alongside matches the matrix.
         let mut kv = vec![Vec3::zeros(); n];
-        matrix.mul(&v, &mut kv, false);
+        matrix.mul(&v, &mut kv, Parallelism::Sequential);
         for ((a, b), c) in kv.iter().zip(&hv).zip(&kv_attachments) {
             assert!((a / (1.0 + fab.damping) + c - b).norm() <= 1e-10 * scale);
         }
@@ -936,7 +955,16 @@ mod tests {
                 matrix: &mut matrix,
                 h,
             };
-            model.evaluate(&x, &v, &zero, &zero, &mut f, &mut hv, Some(target), false);
+            model.evaluate(
+                &x,
+                &v,
+                &zero,
+                &zero,
+                &mut f,
+                &mut hv,
+                Some(target),
+                Parallelism::Sequential,
+            );
             (f, matrix.to_dense())
         };
         let (f0, m0) = run(&mut model);
@@ -985,7 +1013,7 @@ mod tests {
             &mut f,
             &mut vec![zero; n],
             None,
-            false,
+            Parallelism::Sequential,
         );
         let scale = f.iter().map(|f| f.norm()).fold(0.0, f64::max);
         let net: Vec3 = f.iter().sum();
@@ -994,7 +1022,16 @@ mod tests {
         assert!(torque.norm() <= 1e-10 * scale, "net torque {torque}");
         // With damping: still no net force (K maps translations to zero). Stiffness-
         // proportional damping of a stressed state is not torque-free, so no torque check.
-        model.evaluate(&x, &v, &zero, &zero, &mut f, &mut vec![zero; n], None, false);
+        model.evaluate(
+            &x,
+            &v,
+            &zero,
+            &zero,
+            &mut f,
+            &mut vec![zero; n],
+            None,
+            Parallelism::Sequential,
+        );
         let net: Vec3 = f.iter().sum();
         assert!(
             net.norm() <= 1e-10 * f.iter().map(|f| f.norm()).fold(0.0, f64::max),

@@ -29,7 +29,7 @@ impl Simulation {
         let s = &self.settings;
         let target = if with_stiffness {
             let model = &self.model;
-            self.matrix.reset(s.parallel, |i| {
+            self.matrix.reset(s.parallelism(), |i| {
                 Mat3::from_diagonal_element(model.masses()[i] + h * model.drag_coefficient(i))
             });
             Some(StiffnessTarget {
@@ -48,7 +48,7 @@ impl Simulation {
             &mut ws.force,
             &mut ws.hv,
             target,
-            s.parallel,
+            s.parallelism(),
         );
         if let Some(contacts) = &self.contacts {
             let implicit = with_stiffness.then_some((&mut self.matrix, h));
@@ -129,7 +129,7 @@ impl Simulation {
                 ws.filter.velocity_change(&self.v, &mut ws.z);
                 ws.rhs.copy_from_slice(&ws.b);
                 if !ws.filter.is_empty() {
-                    self.matrix.mul(&ws.z, &mut ws.az, s.parallel);
+                    self.matrix.mul(&ws.z, &mut ws.az, s.parallelism());
                     for (r, az) in ws.rhs.iter_mut().zip(&ws.az) {
                         *r -= az;
                     }
@@ -149,7 +149,7 @@ impl Simulation {
                 &mut ws.y,
                 &settings,
                 abs_tolerance,
-                s.parallel,
+                s.parallelism(),
                 setup,
             )?;
             ws.filter.project(&mut ws.y);

@@ -3,6 +3,7 @@
 use crate::error::ParamError;
 use crate::linalg::PcgSettings;
 use crate::math::Vec3;
+use crate::parallelism::Parallelism;
 use crate::self_contact::SelfCollision;
 use serde::{Deserialize, Serialize};
 
@@ -64,6 +65,11 @@ impl Default for SolverSettings {
 }
 
 impl SolverSettings {
+    /// Where the step's loops run, from [`parallel`](Self::parallel).
+    pub fn parallelism(&self) -> Parallelism {
+        Parallelism::from_setting(self.parallel)
+    }
+
     pub fn validate(&self) -> Result<(), ParamError> {
         let h = self.time_step;
         ParamError::check(

@@ -254,7 +254,7 @@ impl SimulationBuilder {
                 .collect();
             let mut c = Contacts::new(collider, model.masses(), &pinned, stiffness, friction);
             c.particles
-                .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallel);
+                .refresh(c.collider.as_ref(), 0.0, &x, self.settings.parallelism());
             c.particles.set_pass_through(self.pass_through.clone());
             c
         });
@@ -530,8 +530,12 @@ impl Simulation {
         // The warm start and the contact states were of the old configuration.
         self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
         if let Some(c) = &mut self.contacts {
-            c.particles
-                .refresh(c.collider.as_ref(), self.time, &self.x, self.settings.parallel);
+            c.particles.refresh(
+                c.collider.as_ref(),
+                self.time,
+                &self.x,
+                self.settings.parallelism(),
+            );
         }
         Ok(())
     }
@@ -588,8 +592,12 @@ impl Simulation {
                     self.ws.y.iter_mut().for_each(|y| *y = Vec3::zeros());
                     if let Some(c) = &mut self.contacts {
                         c.particles.rewind_passing();
-                        c.particles
-                            .refresh(c.collider.as_ref(), self.time, &self.x, self.settings.parallel);
+                        c.particles.refresh(
+                            c.collider.as_ref(),
+                            self.time,
+                            &self.x,
+                            self.settings.parallelism(),
+                        );
                     }
                     if !retry {
                         return Err(e);
@@ -876,7 +884,7 @@ impl Simulation {
             &mut self.ws.x_new,
             &mut self.ws.v_new,
             &self.pinned,
-            self.settings.parallel,
+            self.settings.parallelism(),
         );
         stats.contact_corrections = counts.corrected;
         stats.crossings = counts.crossings;
@@ -912,7 +920,7 @@ impl Simulation {
             &self.pinned,
             h,
             self.settings.integrator == Integrator::ImplicitEuler,
-            self.settings.parallel,
+            self.settings.parallelism(),
         );
     }
 
@@ -943,7 +951,7 @@ impl Simulation {
             h,
         };
         let interrupt = &self.interrupt;
-        let counts = sc.resolve(end, budget, self.settings.parallel, || interrupt.is_raised());
+        let counts = sc.resolve(end, budget, self.settings.parallelism(), || interrupt.is_raised());
         if let Some(contacts) = &mut self.contacts {
             for (i, d) in sc.shifted() {
                 contacts.particles.displaced(i, d);

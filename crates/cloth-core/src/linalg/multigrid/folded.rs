@@ -14,6 +14,7 @@
 //! pairs than at the last fold; within a step's solves only the values change.
 
 use crate::linalg::BlockSparse;
+use crate::parallelism::Parallelism;
 
 /// The folded matrix and the scratch its pattern is made in.
 #[derive(Debug, Default)]
@@ -25,8 +26,8 @@ pub(super) struct Folded {
 
 impl Folded {
     /// `a` with its transient couplings as blocks of the union of both patterns, and
-    /// whether that pattern differs from the last fold's; in parallel when `parallel`.
-    pub fn fold(&mut self, a: &BlockSparse, parallel: bool) -> (&BlockSparse, bool) {
+    /// whether that pattern differs from the last fold's; on rayon's pool when `par` says so.
+    pub fn fold(&mut self, a: &BlockSparse, par: Parallelism) -> (&BlockSparse, bool) {
         self.row_ptr.clear();
         self.cols.clear();
         self.row_ptr.push(0);
@@ -39,7 +40,7 @@ impl Folded {
         if changed {
             self.matrix.set_pattern(&self.row_ptr, &self.cols);
         }
-        self.matrix.set_folded(a, parallel);
+        self.matrix.set_folded(a, par);
         (&self.matrix, changed)
     }
 }
@@ -84,15 +85,15 @@ mod tests {
             .map(|i| Vec3::new(1.0 + i as f64, (i * i) as f64 - 3.0, 0.5 * i as f64))
             .collect();
         let (mut ax, mut fx) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
-        a.mul(&x, &mut ax, false);
+        a.mul(&x, &mut ax, Parallelism::Sequential);
 
         let mut folded = Folded::default();
-        let (f, changed) = folded.fold(&a, false);
+        let (f, changed) = folded.fold(&a, Parallelism::Sequential);
         assert!(changed && !f.has_transient());
         // The chain's 16 blocks and the coupling's new pairs (0, 4), (0, 5), (4, 5) both ways
         // ((4, 5) and (2, 3) were in the chain).
         assert_eq!(f.nnz_blocks(), 16 + 4);
-        f.mul(&x, &mut fx, false);
+        f.mul(&x, &mut fx, Parallelism::Sequential);
         for (p, q) in ax.iter().zip(&fx) {
             assert!((p - q).norm() <= 1e-12 * p.norm().max(1.0), "{p} against {q}");
         }
@@ -110,11 +111,11 @@ mod tests {
         );
         a.add_coupling(k, [(3, Mat3::identity()), (2, -Mat3::identity())]);
         a.finish_transient();
-        a.mul(&x, &mut ax, false);
-        let (f, changed) = folded.fold(&a, true);
+        a.mul(&x, &mut ax, Parallelism::Sequential);
+        let (f, changed) = folded.fold(&a, Parallelism::Rayon);
         assert!(!changed);
         assert_eq!(pattern, (f.row_starts().as_ptr(), f.columns().as_ptr()));
-        f.mul(&x, &mut fx, false);
+        f.mul(&x, &mut fx, Parallelism::Sequential);
         for (p, q) in ax.iter().zip(&fx) {
             assert!((p - q).norm() <= 1e-12 * p.norm().max(1.0), "{p} against {q}");
         }
@@ -122,7 +123,7 @@ mod tests {
         // The couplings gone: the chain's pattern again.
         a.clear_transient();
         a.finish_transient();
-        let (f, changed) = folded.fold(&a, false);
+        let (f, changed) = folded.fold(&a, Parallelism::Sequential);
         assert!(changed);
         assert_eq!(f.nnz_blocks(), 16);
         assert_eq!(f.columns(), a.columns());

@@ -5,6 +5,7 @@ use super::prolongator::Prolongator;
 use crate::linalg::row_chunks::for_each_row;
 use crate::linalg::BlockSparse;
 use crate::math::Mat3;
+use crate::parallelism::Parallelism;
 
 #[derive(Debug, Clone, Default)]
 pub(super) struct Galerkin {
@@ -93,9 +94,9 @@ impl Galerkin {
     }
 
     /// `coarse = P^T a P`, symmetrised against rounding.
-    pub fn multiply(&mut self, a: &BlockSparse, p: &Prolongator, coarse: &mut BlockSparse, parallel: bool) {
+    pub fn multiply(&mut self, a: &BlockSparse, p: &Prolongator, coarse: &mut BlockSparse, par: Parallelism) {
         let (ap_ptr, terms_ptr, terms) = (&self.ap_ptr, &self.ap_terms_ptr, &self.ap_terms);
-        for_each_row(ap_ptr, &mut self.ap, parallel, |i, first, row| {
+        for_each_row(ap_ptr, &mut self.ap, par, |i, first, row| {
             row.fill(Mat3::zeros());
             let mut k = terms_ptr[i];
             for s in a.row(i) {
@@ -109,7 +110,7 @@ impl Galerkin {
 
         let (ap, ap_ptr) = (&self.ap, &self.ap_ptr);
         let (terms_ptr, terms) = (&self.coarse_terms_ptr, &self.coarse_terms);
-        coarse.fill_rows(parallel, |a_c, first, row| {
+        coarse.fill_rows(par, |a_c, first, row| {
             row.fill(Mat3::zeros());
             let mut k = terms_ptr[a_c];
             for (i, block) in p.column(a_c) {

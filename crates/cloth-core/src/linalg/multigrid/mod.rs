@@ -20,6 +20,7 @@ mod tentative;
 
 use super::{inverse_diagonal, BlockSparse, Filter};
 use crate::math::{Mat3, Vec3};
+use crate::parallelism::Parallelism;
 use aggregation::{aggregate, Aggregates};
 use folded::Folded;
 use galerkin::Galerkin;
@@ -94,12 +95,12 @@ fn product_then(
     filter: Option<&Filter>,
     x: &[Vec3],
     y: &mut [Vec3],
-    parallel: bool,
+    par: Parallelism,
     g: impl Fn(usize, Vec3) -> Vec3 + Sync,
 ) {
     match filter {
-        Some(f) => m.mul_then(x, y, parallel, |i, v| g(i, f.project_row(i, v))),
-        None => m.mul_then(x, y, parallel, g),
+        Some(f) => m.mul_then(x, y, par, |i, v| g(i, f.project_row(i, v))),
+        None => m.mul_then(x, y, par, g),
     }
 }
 
@@ -184,11 +185,11 @@ impl Multigrid {
     }
 
     /// Computes every level's values for the filtered matrix `S A S + I - S`.
-    pub fn build(&mut self, a: &BlockSparse, filter: &Filter, parallel: bool) -> Result<(), String> {
+    pub fn build(&mut self, a: &BlockSparse, filter: &Filter, par: Parallelism) -> Result<(), String> {
         // Taken out for the build, so the folded matrix can be read while the levels are
         // written.
         let mut folded = std::mem::take(&mut self.folded);
-        let result = self.build_folded(a, &mut folded, filter, parallel);
+        let result = self.build_folded(a, &mut folded, filter, par);
         self.folded = folded;
         result
     }
@@ -198,11 +199,11 @@ impl Multigrid {
         a: &BlockSparse,
         folded: &mut Folded,
         filter: &Filter,
-        parallel: bool,
+        par: Parallelism,
     ) -> Result<(), String> {
         let fold = a.has_transient();
         let (fine, changed) = if fold {
-            folded.fold(a, parallel && a.nnz_blocks() >= PARALLEL_BLOCKS)
+            folded.fold(a, par.for_size(a.nnz_blocks(), PARALLEL_BLOCKS))
         } else {
             (a, false)
         };
@@ -221,7 +222,7 @@ impl Multigrid {
                 (&done[l - 1], &done[l - 1])
             };
             let f = (l == 0).then_some(filter);
-            let parallel = parallel && m.nnz_blocks() >= PARALLEL_BLOCKS;
+            let par = par.for_size(m.nnz_blocks(), PARALLEL_BLOCKS);
             let (above, below) = self.levels.split_at_mut(l);
             let level = &mut below[0];
             let basis = match above.last() {
@@ -233,12 +234,12 @@ impl Multigrid {
                     &self.fine_basis
                 }
             };
-            inverse_diagonal(smoother, f, &mut level.inv_diag, parallel)
+            inverse_diagonal(smoother, f, &mut level.inv_diag, par)
                 .map_err(|i| format!("multigrid level {l}: diagonal block {i} is not positive definite"))?;
-            level.omega = JACOBI_WEIGHT / self.spectrum.radius(smoother, f, &level.inv_diag, parallel);
+            level.omega = JACOBI_WEIGHT / self.spectrum.radius(smoother, f, &level.inv_diag, par);
             level.tentative.build(basis, &level.aggregates);
-            smooth_prolongator(level, m, f, parallel);
-            level.galerkin.multiply(m, &level.p, &mut rest[0], parallel);
+            smooth_prolongator(level, m, f, par);
+            level.galerkin.multiply(m, &level.p, &mut rest[0], par);
             for (c, empty) in level.tentative.empty.iter().enumerate() {
                 let d = rest[0].diag_slot(c);
                 rest[0].blocks_mut()[d] += empty;
@@ -268,25 +269,30 @@ impl Multigrid {
     /// filter may only have freed directions since: the coarse corrections then stay in
     /// its range. The smoother's spectral radius is estimated again, as letting go of a
     /// contact's drag may raise it.
-    pub fn refresh_finest(&mut self, a: &BlockSparse, filter: &Filter, parallel: bool) -> Result<(), String> {
+    pub fn refresh_finest(
+        &mut self,
+        a: &BlockSparse,
+        filter: &Filter,
+        par: Parallelism,
+    ) -> Result<(), String> {
         let Some(level) = self.levels.first_mut() else {
             // A single level is the dense factor of the filtered matrix itself.
-            return self.build(a, filter, parallel);
+            return self.build(a, filter, par);
         };
-        inverse_diagonal(a, Some(filter), &mut level.inv_diag, parallel)
+        inverse_diagonal(a, Some(filter), &mut level.inv_diag, par)
             .map_err(|i| format!("multigrid level 0: diagonal block {i} is not positive definite"))?;
-        level.omega = JACOBI_WEIGHT / self.spectrum.radius(a, Some(filter), &level.inv_diag, parallel);
+        level.omega = JACOBI_WEIGHT / self.spectrum.radius(a, Some(filter), &level.inv_diag, par);
         Ok(())
     }
 
     /// `x = M b`, one V-cycle; `b` and `x` are in the range of `filter`.
-    pub fn apply(&self, a: &BlockSparse, filter: &Filter, b: &[Vec3], x: &mut [Vec3], parallel: bool) {
+    pub fn apply(&self, a: &BlockSparse, filter: &Filter, b: &[Vec3], x: &mut [Vec3], par: Parallelism) {
         // A panic inside a cycle leaves nothing half-done in the scratch: every vector in
         // it is written before it is read.
         let mut guard = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
         let (scratch, dense) = &mut *guard;
         scratch[0].b.copy_from_slice(b);
-        self.cycle(0, a, filter, scratch, dense, parallel);
+        self.cycle(0, a, filter, scratch, dense, par);
         x.copy_from_slice(&scratch[0].x);
         // Exact in exact arithmetic (the prolongator's rows are projected); this keeps
         // rounding out of the constrained directions, which CG must never see.
@@ -301,7 +307,7 @@ impl Multigrid {
         filter: &Filter,
         scratch: &mut [Scratch],
         dense: &mut DVector<f64>,
-        parallel: bool,
+        par: Parallelism,
     ) {
         let (here, below) = scratch.split_first_mut().expect("a scratch per level");
         let (b, x) = (&here.b, &mut here.x);
@@ -321,16 +327,16 @@ impl Multigrid {
         } else {
             (&self.coarse[l - 1], None)
         };
-        let parallel = parallel && m.nnz_blocks() >= PARALLEL_BLOCKS;
+        let par = par.for_size(m.nnz_blocks(), PARALLEL_BLOCKS);
         let r = &mut here.r;
         for ((xk, bk), inv) in x.iter_mut().zip(b).zip(&level.inv_diag) {
             *xk = level.omega * (inv * bk);
         }
-        product_then(m, f, x, r, parallel, |i, v| b[i] - v);
-        level.p.restrict(r, &mut below[0].b, parallel);
-        self.cycle(l + 1, a, filter, below, dense, parallel);
-        level.p.prolong_add(&below[0].x, x, parallel);
-        product_then(m, f, x, r, parallel, |i, v| b[i] - v);
+        product_then(m, f, x, r, par, |i, v| b[i] - v);
+        level.p.restrict(r, &mut below[0].b, par);
+        self.cycle(l + 1, a, filter, below, dense, par);
+        level.p.prolong_add(&below[0].x, x, par);
+        product_then(m, f, x, r, par, |i, v| b[i] - v);
         for ((xk, rk), inv) in x.iter_mut().zip(r.iter()).zip(&level.inv_diag) {
             *xk += level.omega * (inv * rk);
         }
@@ -339,10 +345,10 @@ impl Multigrid {
 
 /// `P = (I - w D^-1 A) T`, `T` the tentative prolongator; on the finest level the rows
 /// are projected by the filter, so every correction obeys the constraints.
-fn smooth_prolongator(level: &mut Level, m: &BlockSparse, f: Option<&Filter>, parallel: bool) {
+fn smooth_prolongator(level: &mut Level, m: &BlockSparse, f: Option<&Filter>, par: Parallelism) {
     let (t, of_node) = (&level.tentative.blocks, &level.aggregates.of_node);
     let (inv_diag, omega) = (&level.inv_diag, level.omega);
-    level.p.fill_rows(parallel, |i, cols, row| {
+    level.p.fill_rows(par, |i, cols, row| {
         row.fill(Mat3::zeros());
         let column = |g: u32| {
             cols.iter()

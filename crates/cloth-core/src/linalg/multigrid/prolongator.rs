@@ -6,6 +6,7 @@ use super::aggregation::Aggregates;
 use crate::linalg::row_chunks::{for_each_entry, for_each_row};
 use crate::linalg::BlockSparse;
 use crate::math::{Mat3, Vec3};
+use crate::parallelism::Parallelism;
 
 #[derive(Debug, Clone, Default)]
 pub(super) struct Prolongator {
@@ -93,20 +94,18 @@ impl Prolongator {
     }
 
     /// Fills the values row by row: `f(i, cols, blocks)` writes row `i`.
-    pub fn fill_rows(&mut self, parallel: bool, f: impl Fn(usize, &[u32], &mut [Mat3]) + Sync) {
+    pub fn fill_rows(&mut self, par: Parallelism, f: impl Fn(usize, &[u32], &mut [Mat3]) + Sync) {
         let cols = &self.cols;
-        for_each_row(&self.row_ptr, &mut self.blocks, parallel, |i, first, row| {
+        for_each_row(&self.row_ptr, &mut self.blocks, par, |i, first, row| {
             f(i, &cols[first..first + row.len()], row)
         });
         let (blocks, slots) = (&self.blocks, &self.col_slots);
-        for_each_entry(&mut self.col_blocks, parallel, |k, b| {
-            *b = blocks[slots[k] as usize]
-        });
+        for_each_entry(&mut self.col_blocks, par, |k, b| *b = blocks[slots[k] as usize]);
     }
 
     /// `y += P x`: a coarse correction brought to the fine nodes.
-    pub fn prolong_add(&self, x: &[Vec3], y: &mut [Vec3], parallel: bool) {
-        for_each_entry(y, parallel, |i, yi| {
+    pub fn prolong_add(&self, x: &[Vec3], y: &mut [Vec3], par: Parallelism) {
+        for_each_entry(y, par, |i, yi| {
             let mut s = Vec3::zeros();
             for slot in self.row(i) {
                 s += self.blocks[slot] * x[self.cols[slot] as usize];
@@ -116,8 +115,8 @@ impl Prolongator {
     }
 
     /// `out = P^T r`.
-    pub fn restrict(&self, r: &[Vec3], out: &mut [Vec3], parallel: bool) {
-        for_each_entry(out, parallel, |a, o| {
+    pub fn restrict(&self, r: &[Vec3], out: &mut [Vec3], par: Parallelism) {
+        for_each_entry(out, par, |a, o| {
             let mut s = Vec3::zeros();
             for (i, block) in self.column(a) {
                 s += block.tr_mul(&r[i]);

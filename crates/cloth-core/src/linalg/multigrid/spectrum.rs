@@ -7,6 +7,7 @@
 use super::product_then;
 use crate::linalg::{BlockSparse, Filter};
 use crate::math::{Mat3, Vec3};
+use crate::parallelism::Parallelism;
 use nalgebra::SMatrix;
 
 /// Lanczos steps (matrix-vector products) per estimate.
@@ -45,7 +46,13 @@ impl Spectrum {
     /// from below, plus its residual bound, which puts some eigenvalue within that
     /// distance of it. That lands at or just above the largest (see the tests); it is
     /// not a proven bound. Nothing free gives the smallest positive number.
-    pub fn radius(&mut self, m: &BlockSparse, f: Option<&Filter>, inv_diag: &[Mat3], parallel: bool) -> f64 {
+    pub fn radius(
+        &mut self,
+        m: &BlockSparse,
+        f: Option<&Filter>,
+        inv_diag: &[Mat3],
+        par: Parallelism,
+    ) -> f64 {
         let n = m.n();
         let [q0, q1] = &mut self.q;
         let [dq0, dq1] = &mut self.dq;
@@ -78,7 +85,7 @@ impl Spectrum {
         let (mut alpha, mut beta) = ([0.0; STEPS], [0.0; STEPS]);
         let mut steps = 0;
         for j in 0..STEPS {
-            product_then(m, f, q, aq, parallel, |_, v| v);
+            product_then(m, f, q, aq, par, |_, v| v);
             alpha[j] = dot(q, aq);
             steps = j + 1;
             // The next vector w = D^-1 A q - alpha q - beta q_prev, and D w, over the
@@ -153,8 +160,8 @@ mod tests {
     fn lanczos_finds_the_spectral_radius_from_above() {
         let a = chain(300);
         let mut inv_diag = vec![Mat3::zeros(); a.n()];
-        inverse_diagonal(&a, None, &mut inv_diag, false).expect("SPD");
-        let estimate = Spectrum::new(a.n()).radius(&a, None, &inv_diag, false);
+        inverse_diagonal(&a, None, &mut inv_diag, Parallelism::Sequential).expect("SPD");
+        let estimate = Spectrum::new(a.n()).radius(&a, None, &inv_diag, Parallelism::Sequential);
         let rho = exact(&a, &Filter::new(a.n(), 0));
         assert!(
             estimate >= rho * (1.0 - 1e-9) && estimate <= 1.05 * rho,
@@ -222,8 +229,8 @@ mod tests {
             filter.push(&constraint).expect("valid");
         }
         let mut inv_diag = vec![Mat3::zeros(); a.n()];
-        inverse_diagonal(&a, Some(&filter), &mut inv_diag, false).expect("SPD");
-        let estimate = Spectrum::new(a.n()).radius(&a, Some(&filter), &inv_diag, false);
+        inverse_diagonal(&a, Some(&filter), &mut inv_diag, Parallelism::Sequential).expect("SPD");
+        let estimate = Spectrum::new(a.n()).radius(&a, Some(&filter), &inv_diag, Parallelism::Sequential);
         let rho = exact(&a, &filter);
         assert!(
             estimate >= rho * (1.0 - 1e-9) && estimate <= 1.05 * rho,
@@ -237,8 +244,8 @@ mod tests {
         // a remainder under 1e-8 of the diagonal, which moves the eigenvalues by no more.
         let a = chain(2);
         let mut inv_diag = vec![Mat3::zeros(); 2];
-        inverse_diagonal(&a, None, &mut inv_diag, false).expect("SPD");
-        let estimate = Spectrum::new(2).radius(&a, None, &inv_diag, false);
+        inverse_diagonal(&a, None, &mut inv_diag, Parallelism::Sequential).expect("SPD");
+        let estimate = Spectrum::new(2).radius(&a, None, &inv_diag, Parallelism::Sequential);
         let rho = exact(&a, &Filter::new(a.n(), 0));
         assert!(
             (estimate - rho).abs() <= 1e-8 * rho,
@@ -254,8 +261,8 @@ mod tests {
             };
             filter.push(&fixed).expect("valid");
         }
-        inverse_diagonal(&a, Some(&filter), &mut inv_diag, false).expect("SPD");
-        let estimate = Spectrum::new(2).radius(&a, Some(&filter), &inv_diag, false);
+        inverse_diagonal(&a, Some(&filter), &mut inv_diag, Parallelism::Sequential).expect("SPD");
+        let estimate = Spectrum::new(2).radius(&a, Some(&filter), &inv_diag, Parallelism::Sequential);
         assert_eq!(estimate, f64::MIN_POSITIVE);
     }
 }
