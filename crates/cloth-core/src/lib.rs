@@ -29,18 +29,21 @@ pub use contact::{
     PassThrough, Proximity, SharpFeature, SurfacePoint,
 };
 pub use energy::attachment::Attachment;
-pub use error::{DivergenceReason, MeshError, ParamError, SimError};
+pub use error::ParamError;
 pub use fabric::{
     BendingLaw, BendingRigidity, Fabric, KesConversion, KesDirection, KesMeasurement, SourceCoefficients,
     TensileLaw, UnusedKes,
 };
-pub use mesh::{components, within_rings, ClothMesh, GridBuilder, GridDiagonals, GridShape, Neighbours};
+pub use mesh::{
+    components, within_rings, ClothMesh, GridBuilder, GridDiagonals, GridShape, MeshError, Neighbours,
+};
 pub use metrics::{GridStretch, StrainReport};
 pub use self_contact::{
     closest_self_approach, count_self_intersections, self_intersecting_pairs, Intersections, LayerPass,
     LayerPassing, SelfCollision, SelfCrossings, Tangle,
 };
 pub use solver::{
-    Constraint, ConstraintKind, Integrator, Interrupt, PcgSettings, Pin, PinMotion, RestCriteria,
-    RestOutcome, SeamPull, Simulation, SimulationBuilder, SolverSettings, StepStats, StopReason,
+    Constraint, ConstraintKind, DivergenceReason, Integrator, Interrupt, PcgSettings, Pin, PinMotion,
+    RestCriteria, RestOutcome, SeamPull, SimError, Simulation, SimulationBuilder, SolveFailure,
+    SolverSettings, StepStats, StopReason,
 };

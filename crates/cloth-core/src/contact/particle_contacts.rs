@@ -3,7 +3,7 @@
 //! body would have to pull, and the continuous end-of-step test that keeps particles out.
 
 use super::{Collider, Proximity, SurfacePoint};
-use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter};
+use crate::linalg::{BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter};
 use crate::math::{Mat3, Vec3};
 use crate::parallelism::Parallelism;
 use rayon::prelude::*;
@@ -360,7 +360,7 @@ impl ParticleContacts {
     }
 
     /// Adds the active contacts to the filter.
-    pub fn push_constraints(&self, filter: &mut Filter) -> Result<(), String> {
+    pub fn push_constraints(&self, filter: &mut Filter) -> Result<(), ConstraintError> {
         self.active
             .iter()
             .filter(|c| c.live)

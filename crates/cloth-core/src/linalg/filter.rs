@@ -8,6 +8,15 @@
 
 use crate::math::{Mat3, Vec3};
 
+/// A constraint the filter cannot hold.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum ConstraintError {
+    #[error("constraint on particle {particle} has a zero or non-finite direction or velocity")]
+    NotFinite { particle: usize },
+    #[error("constraint on particle {particle}, but there are {count}")]
+    NoSuchParticle { particle: usize, count: usize },
+}
+
 /// Which directions of a particle's velocity a constraint prescribes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ConstraintKind {
@@ -72,7 +81,7 @@ impl Filter {
 
     /// Adds a constraint; a zero or non-finite direction or velocity is an error naming
     /// the particle.
-    pub fn push(&mut self, c: &Constraint) -> Result<(), String> {
+    pub fn push(&mut self, c: &Constraint) -> Result<(), ConstraintError> {
         let direction = match c.kind {
             ConstraintKind::Fixed => None,
             ConstraintKind::Plane { normal } => Some(normal),
@@ -80,17 +89,13 @@ impl Filter {
         };
         let finite = |v: &Vec3| v.iter().all(|x| x.is_finite());
         if direction.is_some_and(|d| !finite(&d) || d.norm() < 1e-12) || !finite(&c.velocity) {
-            return Err(format!(
-                "constraint on particle {} has a zero or non-finite direction or velocity",
-                c.particle
-            ));
+            return Err(ConstraintError::NotFinite { particle: c.particle });
         }
         if c.particle >= self.slot.len() {
-            return Err(format!(
-                "constraint on particle {}, but there are {}",
-                c.particle,
-                self.slot.len()
-            ));
+            return Err(ConstraintError::NoSuchParticle {
+                particle: c.particle,
+                count: self.slot.len(),
+            });
         }
         let s = c.kind.free_projection();
         let held = (Mat3::identity() - s) * c.velocity;

@@ -12,6 +12,6 @@ mod pcg;
 
 pub use block_sparse::BlockSparse;
 pub(crate) use diagonal_inverse::inverse_diagonal;
-pub use filter::{Constraint, ConstraintKind, Filter};
-pub use multigrid::Multigrid;
-pub use pcg::{Pcg, PcgOutcome, PcgSettings, Preconditioner, Setup};
+pub use filter::{Constraint, ConstraintError, ConstraintKind, Filter};
+pub use multigrid::{Multigrid, MultigridError};
+pub use pcg::{Pcg, PcgError, PcgOutcome, PcgSettings, Preconditioner, Setup};

@@ -4,7 +4,7 @@
 //! only if the matrix's pattern changes).
 
 use super::diagonal_inverse::inverse_diagonal;
-use super::{BlockSparse, Filter, Multigrid};
+use super::{BlockSparse, Filter, Multigrid, MultigridError};
 use crate::math::{Mat3, Vec3};
 use crate::parallelism::Parallelism;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -14,6 +14,19 @@ use faer::matrix_free::conjugate_gradient::{
 use faer::matrix_free::{LinOp, Precond};
 use faer::{Mat, MatMut, MatRef, Par};
 use serde::{Deserialize, Serialize};
+
+/// Why a solve failed (not converging is an outcome, not an error: see [`PcgOutcome`]).
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum PcgError {
+    #[error("diagonal block of particle {particle} is not positive definite")]
+    DiagonalNotDefinite { particle: usize },
+    #[error("the system matrix is not positive definite")]
+    MatrixNotDefinite,
+    #[error("the preconditioner is not positive definite")]
+    PreconditionerNotDefinite,
+    #[error(transparent)]
+    Multigrid(#[from] MultigridError),
+}
 
 /// What preconditions the conjugate gradients.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -237,7 +250,7 @@ impl Pcg {
         settings: &PcgSettings,
         abs_tolerance: f64,
         par: Parallelism,
-    ) -> Result<PcgOutcome, String> {
+    ) -> Result<PcgOutcome, PcgError> {
         self.solve_with(a, filter, b, x, settings, abs_tolerance, par, Setup::Build)
     }
 
@@ -254,7 +267,7 @@ impl Pcg {
         abs_tolerance: f64,
         par: Parallelism,
         setup: Setup,
-    ) -> Result<PcgOutcome, String> {
+    ) -> Result<PcgOutcome, PcgError> {
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
         blocks_mut(self.rhs.as_mut()).copy_from_slice(b);
         blocks_mut(self.sol.as_mut()).copy_from_slice(x);
@@ -295,7 +308,7 @@ impl Pcg {
             Some(result) => result,
             None => {
                 inverse_diagonal(a, Some(filter), &mut self.inv_diag, par)
-                    .map_err(|r| format!("diagonal block of particle {r} is not positive definite"))?;
+                    .map_err(|particle| PcgError::DiagonalNotDefinite { particle })?;
                 let precond = block_jacobi(&self.inv_diag);
                 let rhs = self.rhs.as_ref();
                 run_cg(
@@ -328,11 +341,9 @@ impl Pcg {
                     converged: false,
                 }
             }
-            Err(CgError::NonPositiveDefiniteOperator) => {
-                return Err("the system matrix is not positive definite".into())
-            }
+            Err(CgError::NonPositiveDefiniteOperator) => return Err(PcgError::MatrixNotDefinite),
             Err(CgError::NonPositiveDefinitePreconditioner) => {
-                return Err("the preconditioner is not positive definite".into())
+                return Err(PcgError::PreconditionerNotDefinite)
             }
         };
         x.copy_from_slice(blocks(self.sol.as_ref()));

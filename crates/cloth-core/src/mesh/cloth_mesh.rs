@@ -3,7 +3,7 @@
 use super::grid_shape::GridShape;
 use super::topology::{edges_and_hinges, Hinge};
 
-use crate::error::MeshError;
+use super::error::MeshError;
 use crate::math::Vec3;
 use nalgebra::Vector2;
 

@@ -1,8 +1,8 @@
 //! A rectangular warp/weft grid: the source's particles at thread crossings.
 
 use super::cloth_mesh::ClothMesh;
+use super::error::MeshError;
 use super::grid_shape::{GridDiagonals, GridShape};
-use crate::error::MeshError;
 use crate::math::Vec3;
 use nalgebra::Vector2;
 

@@ -1,6 +1,6 @@
 //! Edges and hinges (interior edges with the two vertices opposite them).
 
-use crate::error::MeshError;
+use super::error::MeshError;
 use std::collections::HashMap;
 
 /// An interior edge `edge` shared by two triangles; `opposite[k]` is the vertex of

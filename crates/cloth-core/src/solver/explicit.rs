@@ -1,5 +1,6 @@
 //! Explicit (forward) Euler, as in the source, and symplectic Euler.
 
+use super::error::SolveFailure;
 use super::{Simulation, StepStats};
 use std::time::Instant;
 
@@ -7,7 +8,7 @@ impl Simulation {
     /// Writes the next state into the workspace. Forward Euler moves with the old
     /// velocity; symplectic Euler with the new one. Pinned components take their
     /// prescribed velocity in both.
-    pub(super) fn explicit_step(&mut self, h: f64, symplectic: bool) -> Result<StepStats, String> {
+    pub(super) fn explicit_step(&mut self, h: f64, symplectic: bool) -> Result<StepStats, SolveFailure> {
         let start = Instant::now();
         let potential = self.evaluate(h, false);
         let assembly_seconds = start.elapsed().as_secs_f64();

@@ -3,6 +3,7 @@
 //! with the constraint filter in projected form.
 
 use super::assembly::StiffnessTarget;
+use super::error::SolveFailure;
 use super::{Simulation, StepStats};
 use crate::linalg::{BlockSparse, Setup};
 use crate::math::{Mat3, Vec3};
@@ -82,7 +83,11 @@ impl Simulation {
     /// [`SCOUT_TOLERANCE`] times the tolerance: it finds most of the contacts to let go,
     /// so the solves to the full tolerance start with the right contacts more often (a
     /// median of 27 rather than 36 CG iterations a step for the sheet on the sphere).
-    pub(super) fn implicit_step(&mut self, h: f64, velocity_accuracy: f64) -> Result<StepStats, String> {
+    pub(super) fn implicit_step(
+        &mut self,
+        h: f64,
+        velocity_accuracy: f64,
+    ) -> Result<StepStats, SolveFailure> {
         let start = Instant::now();
         let potential = self.evaluate(h, true);
         let assembly_seconds = start.elapsed().as_secs_f64();

@@ -1,5 +1,6 @@
 //! The simulation: state, integrators, pins and the stopping mechanism.
 
+mod error;
 mod settings;
 mod interrupt;
 mod pins;
@@ -12,6 +13,7 @@ mod implicit;
 
 pub use crate::linalg::{Constraint, ConstraintKind, PcgSettings};
 pub use assembly::SeamPull;
+pub use error::{DivergenceReason, SimError, SolveFailure};
 pub use interrupt::Interrupt;
 pub use pins::{Pin, PinMotion};
 pub use rest::{RestCriteria, RestOutcome, StopReason};

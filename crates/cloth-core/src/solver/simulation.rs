@@ -1,15 +1,16 @@
 //! The Simulation: owns the state and all scratch, and steps.
 
 use super::assembly::{ForceModel, SeamPull};
+use super::error::{DivergenceReason, SimError, SolveFailure};
 use super::rest::MIN_WINDOW;
 use super::{
     Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
 };
 use crate::contact::{Collider, Contacts, PassThrough};
 use crate::energy::attachment::Attachment;
-use crate::error::{DivergenceReason, ParamError, SimError};
+use crate::error::ParamError;
 use crate::fabric::Fabric;
-use crate::linalg::{BlockSparse, Constraint, ConstraintKind, Filter, Pcg};
+use crate::linalg::{BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter, Pcg};
 use crate::math::Vec3;
 use crate::mesh::ClothMesh;
 use crate::self_contact::{Intersections, LayerPass, LayerPassing, SelfContacts, StepEnd, Tangle};
@@ -692,10 +693,10 @@ impl Simulation {
             return Err(SimError::Solver {
                 step: self.steps + 1,
                 last_good: self.steps,
-                reason: format!(
-                    "the solve did not converge in {} iterations (relative residual {:.1e})",
-                    stats.cg_iterations, stats.cg_residual
-                ),
+                reason: SolveFailure::NotConverged {
+                    iterations: stats.cg_iterations,
+                    residual: stats.cg_residual,
+                },
             });
         }
         if let Some(budget) = over {
@@ -852,7 +853,7 @@ impl Simulation {
     }
 
     /// The step's constraints: the pins, then the active contacts (a pin wins).
-    pub(super) fn refill_filter(&mut self, h: f64) -> Result<(), String> {
+    pub(super) fn refill_filter(&mut self, h: f64) -> Result<(), ConstraintError> {
         let filter = &mut self.ws.filter;
         filter.clear();
         for (pin, target) in self.pins.iter().zip(&self.ws.pin_targets) {

@@ -68,6 +68,16 @@ struct Scratch {
     r: Vec<Vec3>,
 }
 
+/// Why the multigrid hierarchy could not be built.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum MultigridError {
+    /// A diagonal block of a level's matrix, the smoother's, is not positive definite.
+    #[error("multigrid level {level}: diagonal block {block} is not positive definite")]
+    NotDefinite { level: usize, block: usize },
+    #[error("multigrid: the coarsest matrix is not positive definite")]
+    CoarsestNotDefinite,
+}
+
 /// The multigrid hierarchy of one matrix pattern.
 #[derive(Debug)]
 pub struct Multigrid {
@@ -185,7 +195,12 @@ impl Multigrid {
     }
 
     /// Computes every level's values for the filtered matrix `S A S + I - S`.
-    pub fn build(&mut self, a: &BlockSparse, filter: &Filter, par: Parallelism) -> Result<(), String> {
+    pub fn build(
+        &mut self,
+        a: &BlockSparse,
+        filter: &Filter,
+        par: Parallelism,
+    ) -> Result<(), MultigridError> {
         // Taken out for the build, so the folded matrix can be read while the levels are
         // written.
         let mut folded = std::mem::take(&mut self.folded);
@@ -200,7 +215,7 @@ impl Multigrid {
         folded: &mut Folded,
         filter: &Filter,
         par: Parallelism,
-    ) -> Result<(), String> {
+    ) -> Result<(), MultigridError> {
         let fold = a.has_transient();
         let (fine, changed) = if fold {
             folded.fold(a, par.for_size(a.nnz_blocks(), PARALLEL_BLOCKS))
@@ -235,7 +250,7 @@ impl Multigrid {
                 }
             };
             inverse_diagonal(smoother, f, &mut level.inv_diag, par)
-                .map_err(|i| format!("multigrid level {l}: diagonal block {i} is not positive definite"))?;
+                .map_err(|block| MultigridError::NotDefinite { level: l, block })?;
             level.omega = JACOBI_WEIGHT / self.spectrum.radius(smoother, f, &level.inv_diag, par);
             level.tentative.build(basis, &level.aggregates);
             smooth_prolongator(level, m, f, par);
@@ -257,10 +272,7 @@ impl Multigrid {
             Some(m) => dense_into(m, None, &mut dense),
             None => dense_into(fine, Some(filter), &mut dense),
         }
-        self.factor = Some(
-            nalgebra::Cholesky::new(dense)
-                .ok_or("multigrid: the coarsest matrix is not positive definite")?,
-        );
+        self.factor = Some(nalgebra::Cholesky::new(dense).ok_or(MultigridError::CoarsestNotDefinite)?);
         Ok(())
     }
 
@@ -274,13 +286,13 @@ impl Multigrid {
         a: &BlockSparse,
         filter: &Filter,
         par: Parallelism,
-    ) -> Result<(), String> {
+    ) -> Result<(), MultigridError> {
         let Some(level) = self.levels.first_mut() else {
             // A single level is the dense factor of the filtered matrix itself.
             return self.build(a, filter, par);
         };
         inverse_diagonal(a, Some(filter), &mut level.inv_diag, par)
-            .map_err(|i| format!("multigrid level 0: diagonal block {i} is not positive definite"))?;
+            .map_err(|block| MultigridError::NotDefinite { level: 0, block })?;
         level.omega = JACOBI_WEIGHT / self.spectrum.radius(a, Some(filter), &level.inv_diag, par);
         Ok(())
     }
