@@ -201,7 +201,6 @@ fn filtered_solve_holds_constrained_components_and_solves_the_rest() {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
 fn check_filtered_solve(
     a: &BlockSparse,
     filter: &Filter,

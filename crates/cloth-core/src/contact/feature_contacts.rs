@@ -9,7 +9,7 @@
 //! Fedkiw & Anderson 2002).
 
 use super::particle_contacts::SLIP_SPEED;
-use super::SharpFeature;
+use super::{SharpFeature, StepEnd};
 use crate::linalg::BlockSparse;
 use crate::math::{Mat3, Vec3};
 use crate::spatial::{Aabb, Bvh};
@@ -212,23 +212,32 @@ pub(crate) fn add_penalty(
     energy
 }
 
-/// Pushes back out every cloth triangle that a feature went through during the step of
-/// length `h` (by no more than the step's motion could carry it, from the outer side of
-/// the triangle at the step's start); returns how many. `x_solved` is `x_new` before any
+/// What limits the features' pushes: the particles' inverse masses (zero for pinned ones),
+/// a lower bound on each particle's gap to the bodies, and the bodies' largest thickness.
+pub(crate) struct FeatureReach<'a, G> {
+    pub inv_mass: &'a [f64],
+    pub gap_bound: G,
+    pub max_thickness: f64,
+}
+
+/// Pushes back out every cloth triangle that a feature went through during the step
+/// `end` (by no more than the step's motion could carry it, from the outer side of
+/// the triangle at the step's start); returns how many. `x_solved` is `end.x1` before any
 /// push.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn resolve_features(
+pub(crate) fn resolve_features<G: Fn(usize) -> f64>(
     set: &mut FeatureSet,
     triangles: &[[usize; 3]],
-    h: f64,
-    x_start: &[Vec3],
+    end: &mut StepEnd<'_>,
     x_solved: &[Vec3],
-    x_new: &mut [Vec3],
-    v_new: &mut [Vec3],
-    inv_mass: &[f64],
-    gap_bound: impl Fn(usize) -> f64,
-    max_thickness: f64,
+    reach: FeatureReach<'_, G>,
 ) -> usize {
+    let FeatureReach {
+        inv_mass,
+        gap_bound,
+        max_thickness,
+    } = reach;
+    let (h, x_start) = (end.h, end.x0);
+    let (x_new, v_new) = (&mut *end.x1, &mut *end.v1);
     if set.features.is_empty() {
         return 0;
     }
@@ -599,18 +608,24 @@ mod tests {
         let mut v = vec![Vec3::new(0.0, 0.0, -1.0); 3];
         let mut set = FeatureSet::default();
         set.update(|out| out.extend(features));
-        let n = resolve_features(
-            &mut set,
-            &[[0, 1, 2]],
-            0.01,
-            &start,
-            &solved,
-            &mut x,
-            &mut v,
-            &[1.0; 3],
-            |_| 0.0,
-            0.01,
-        );
+        let mut support = vec![Vec3::zeros(); 3];
+        let mut end = StepEnd {
+            t0: 0.0,
+            h: 0.01,
+            x0: &start,
+            x1: &mut x,
+            v1: &mut v,
+            masses: &[1.0; 3],
+            pinned: &[false; 3],
+            support: &mut support,
+            par: crate::parallelism::Parallelism::Sequential,
+        };
+        let reach = FeatureReach {
+            inv_mass: &[1.0; 3],
+            gap_bound: |_| 0.0,
+            max_thickness: 0.01,
+        };
+        let n = resolve_features(&mut set, &[[0, 1, 2]], &mut end, &solved, reach);
         (n, x, v)
     }
 

@@ -1,16 +1,17 @@
 //! Contact of the cloth with rigid bodies, reached through the [`Collider`] trait.
 
 mod collider;
+mod step_end;
 mod particle_contacts;
 mod feature_contacts;
 
 pub use collider::{Collider, Proximity, SharpFeature, SurfacePoint};
 pub(crate) use particle_contacts::ParticleContacts;
 pub use particle_contacts::{ContactMode, PassThrough, SLIP_SPEED};
+pub use step_end::StepEnd;
 
 use crate::math::Vec3;
 use crate::mesh::ClothMesh;
-use crate::parallelism::Parallelism;
 use std::sync::Arc;
 
 /// The cloth's edges through the bodies' triangles, counted edge-triangle pair by pair as
@@ -202,42 +203,28 @@ impl Contacts {
 
     /// The end-of-step passes: the push-out speed taken back out of the contacts'
     /// velocities, the path test of every particle, and sharp features through cloth
-    /// triangles.
-    #[allow(clippy::too_many_arguments)]
-    pub fn finish_step(
-        &mut self,
-        t0: f64,
-        h: f64,
-        triangles: &[[usize; 3]],
-        x: &[Vec3],
-        x_new: &mut [Vec3],
-        v_new: &mut [Vec3],
-        pinned: &[bool],
-        par: Parallelism,
-    ) -> ContactCounts {
-        self.particles.finish(v_new);
+    /// triangles; then each particle a contact holds gets its body's normal as support.
+    pub fn finish_step(&mut self, end: &mut StepEnd<'_>, triangles: &[[usize; 3]]) -> ContactCounts {
+        self.particles.finish(end.v1);
         let collider = self.collider.as_ref();
-        let sweep = self
-            .particles
-            .sweep(collider, t0, t0 + h, x, x_new, v_new, pinned, par);
+        let sweep = self.particles.sweep(collider, end);
         let particles = &self.particles;
         // Only the features' pushes need the positions before them.
         self.solved.clear();
         if !self.features.features.is_empty() {
-            self.solved.extend_from_slice(x_new);
+            self.solved.extend_from_slice(end.x1);
         }
-        let features = feature_contacts::resolve_features(
-            &mut self.features,
-            triangles,
-            h,
-            x,
-            &self.solved,
-            x_new,
-            v_new,
-            &self.inv_mass,
-            |i| particles.feature_gap_bound(i),
-            collider.max_thickness(),
-        );
+        let reach = feature_contacts::FeatureReach {
+            inv_mass: &self.inv_mass,
+            gap_bound: |i| particles.feature_gap_bound(i),
+            max_thickness: collider.max_thickness(),
+        };
+        let features =
+            feature_contacts::resolve_features(&mut self.features, triangles, end, &self.solved, reach);
+        end.support.fill(Vec3::zeros());
+        for c in self.particles.active.iter().filter(|c| c.live) {
+            end.support[c.particle()] = c.normal;
+        }
         ContactCounts {
             corrected: sweep.corrected,
             crossings: sweep.crossings,

@@ -2,7 +2,7 @@
 //! `r'|S = 0` as a velocity constraint in the filter, Coulomb friction, release when the
 //! body would have to pull, and the continuous end-of-step test that keeps particles out.
 
-use super::{Collider, Proximity, SurfacePoint};
+use super::{Collider, Proximity, StepEnd, SurfacePoint};
 use crate::linalg::{BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter};
 use crate::math::{Mat3, Vec3};
 use crate::parallelism::Parallelism;
@@ -479,21 +479,11 @@ impl ParticleContacts {
         self.state.iter_mut().for_each(|s| s.demand_known = false);
     }
 
-    /// The end-of-step test along every particle's path from `x` (time `t0`) to `x_new`
-    /// (`t1`): a particle that entered a body or ended inside its contact layer is put back
+    /// The end-of-step test along every particle's path from `end.x0` (at its start) to
+    /// `end.x1` (at its end): a particle that entered a body or ended inside its contact layer is put back
     /// at the thickness along the surface normal and loses its velocity into the body.
-    #[allow(clippy::too_many_arguments)]
-    pub fn sweep(
-        &mut self,
-        collider: &dyn Collider,
-        t0: f64,
-        t1: f64,
-        x: &[Vec3],
-        x_new: &mut [Vec3],
-        v_new: &mut [Vec3],
-        pinned: &[bool],
-        par: Parallelism,
-    ) -> SweepCounts {
+    pub fn sweep(&mut self, collider: &dyn Collider, end: &mut StepEnd<'_>) -> SweepCounts {
+        let (t0, t1) = (end.t0, end.t0 + end.h);
         let reach = self.reach;
         let body_motion = collider.motion_bound(t0, t1);
         let visit = |(((s, x0), x1), v1): (((&mut ParticleState, &Vec3), &mut Vec3), &mut Vec3),
@@ -547,22 +537,22 @@ impl ParticleContacts {
             corrected: a.corrected + b.corrected,
             crossings: a.crossings + b.crossings,
         };
-        let counts = if par.is_rayon() {
+        let counts = if end.par.is_rayon() {
             self.state
                 .par_iter_mut()
-                .zip(x)
-                .zip(x_new.par_iter_mut())
-                .zip(v_new.par_iter_mut())
-                .zip(pinned)
+                .zip(&*end.x0)
+                .zip(end.x1.par_iter_mut())
+                .zip(end.v1.par_iter_mut())
+                .zip(end.pinned)
                 .map(|(item, &p)| visit(item, p))
                 .reduce(SweepCounts::default, add)
         } else {
             self.state
                 .iter_mut()
-                .zip(x)
-                .zip(x_new.iter_mut())
-                .zip(v_new.iter_mut())
-                .zip(pinned)
+                .zip(end.x0)
+                .zip(end.x1.iter_mut())
+                .zip(end.v1.iter_mut())
+                .zip(end.pinned)
                 .map(|(item, &p)| visit(item, p))
                 .fold(SweepCounts::default(), add)
         };

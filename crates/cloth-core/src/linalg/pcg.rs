@@ -240,7 +240,6 @@ impl Pcg {
     /// `abs_tolerance`, whichever is looser. `b` and `x` must be projected (`S b = b`,
     /// `S x = x`). The operator runs on rayon's pool when `par` says so; faer's own vector work
     /// stays sequential so the result does not depend on the number of threads.
-    #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
         a: &BlockSparse,
@@ -256,7 +255,6 @@ impl Pcg {
 
     /// As [`Pcg::solve`], keeping as much of the last solve's preconditioner as `setup`
     /// says.
-    #[allow(clippy::too_many_arguments)]
     pub fn solve_with(
         &mut self,
         a: &BlockSparse,

@@ -70,7 +70,6 @@ use cone::Cone;
 use contour::Motion;
 use proximity::Cloth;
 pub use proximity::Contact;
-pub(crate) use response::StepEnd;
 use surface::{Search, SurfaceTree};
 use topology::Topology;
 
@@ -212,7 +211,6 @@ const LOOSE_RINGS: usize = 1;
 impl SelfContacts {
     /// Self-collision for `mesh` with `seams` (pairs of particles to be joined), each
     /// particle of fabric `thickness[i]`, `friction[i]`; `settings` override them.
-    #[allow(clippy::too_many_arguments)]
     pub fn new(
         mesh: &ClothMesh,
         seams: &[[usize; 2]],

@@ -8,6 +8,7 @@ use super::contour::Motion;
 use super::surface::Search;
 use super::topology::find;
 use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
+use crate::contact::StepEnd;
 use crate::math::Vec3;
 use crate::parallelism::Parallelism;
 use crate::spatial::Aabb;
@@ -26,19 +27,6 @@ pub(crate) struct ImpactCounts {
     /// The passes found more impacts than their budget and stopped, leaving a state the
     /// caller must not keep.
     pub over_budget: bool,
-}
-
-/// The end of a step as the impact passes see and change it: the positions at its start
-/// and end and the velocities at its end, with the particles' masses, which are pinned, and
-/// the outward normal of the body holding each (zero for free particles).
-pub(crate) struct StepEnd<'a> {
-    pub x0: &'a [Vec3],
-    pub x1: &'a mut [Vec3],
-    pub v1: &'a mut [Vec3],
-    pub masses: &'a [f64],
-    pub pinned: &'a [bool],
-    pub support: &'a [Vec3],
-    pub h: f64,
 }
 
 /// A zone's sums: mass and mass-weighted displacement of its free members, and count and
@@ -100,9 +88,8 @@ impl SelfContacts {
     /// when, given a `budget`, they have found more impacts than it in all.
     pub fn resolve(
         &mut self,
-        mut end: StepEnd<'_>,
+        end: &mut StepEnd<'_>,
         budget: Option<usize>,
-        par: Parallelism,
         stop: impl Fn() -> bool + Sync,
     ) -> ImpactCounts {
         let mut counts = ImpactCounts::default();
@@ -115,7 +102,7 @@ impl SelfContacts {
             // Pairs ending too close are put right by impulses only; zones and the last
             // resort are for pairs passing through each other.
             let impulses = pass < IMPULSE_PASSES;
-            self.find_impacts(end.x0, end.x1, pass == 0, impulses, par, &stop);
+            self.find_impacts(end.x0, end.x1, pass == 0, impulses, end.par, &stop);
             if stop() {
                 break;
             }
@@ -142,12 +129,12 @@ impl SelfContacts {
             }
             if impulses {
                 for c in &impacts {
-                    self.impulse(c, &mut end);
+                    self.impulse(c, end);
                 }
                 counts.impacts += impacts.len();
             } else if pass < IMPULSE_PASSES + ZONE_PASSES {
-                counts.zone_particles = self.move_zones(&impacts, &mut end);
-            } else if self.freeze(&impacts, &mut end) == 0 {
+                counts.zone_particles = self.move_zones(&impacts, end);
+            } else if self.freeze(&impacts, end) == 0 {
                 // Nothing left to stop: what crosses now is the pins' doing.
                 counts.unresolved = impacts.len();
                 self.response.impacts = impacts;
@@ -294,7 +281,7 @@ impl SelfContacts {
     /// impulse.
     fn impulse(&mut self, c: &Impact, end: &mut StepEnd<'_>) {
         let (x1, v1, masses, pinned, support) =
-            (&mut *end.x1, &mut *end.v1, end.masses, end.pinned, end.support);
+            (&mut *end.x1, &mut *end.v1, end.masses, end.pinned, &*end.support);
         let (w, p, n) = (c.weights, c.particles.map(|i| i as usize), c.normal);
         // Each particle moves along `w n`: a pinned one not at all, one a body holds not
         // into the body.
@@ -355,7 +342,7 @@ impl SelfContacts {
             &mut *end.v1,
             end.masses,
             end.pinned,
-            end.support,
+            &*end.support,
             end.h,
         );
         let n = self.topology.particles();

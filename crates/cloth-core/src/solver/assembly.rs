@@ -323,7 +323,6 @@ impl ForceModel {
     /// when damping or a stiffness target needs it, and `(h^2 + h beta) K` into the
     /// target's matrix.
     /// Returns the potential energy (elastic + gravitational).
-    #[allow(clippy::too_many_arguments)]
     pub fn evaluate(
         &mut self,
         x: &[Vec3],

@@ -6,14 +6,14 @@ use super::rest::MIN_WINDOW;
 use super::{
     Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
 };
-use crate::contact::{Collider, Contacts, PassThrough};
+use crate::contact::{Collider, Contacts, PassThrough, StepEnd};
 use crate::energy::attachment::Attachment;
 use crate::error::ParamError;
 use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter, Pcg};
 use crate::math::Vec3;
 use crate::mesh::ClothMesh;
-use crate::self_contact::{Intersections, LayerPass, LayerPassing, SelfContacts, StepEnd, Tangle};
+use crate::self_contact::{Intersections, LayerPass, LayerPassing, SelfContacts, Tangle};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
@@ -670,8 +670,7 @@ impl Simulation {
                 Integrator::ExplicitEuler => sim.explicit_step(h, false)?,
                 Integrator::SymplecticEuler => sim.explicit_step(h, true)?,
             };
-            sim.finish_contacts(h, &mut stats);
-            let over = sim.finish_self_contacts(h, at_floor, &mut stats);
+            let over = sim.finish_contacts(h, at_floor, &mut stats);
             stats.self_collision_seconds += detection;
             Ok((stats, over))
         };
@@ -869,30 +868,6 @@ impl Simulation {
         Ok(())
     }
 
-    /// The end-of-step contact passes, when there are bodies.
-    fn finish_contacts(&mut self, h: f64, stats: &mut StepStats) {
-        let Some(contacts) = &mut self.contacts else {
-            return;
-        };
-        let start = Instant::now();
-        stats.contacts = contacts.particles.active.iter().filter(|c| c.live).count();
-        stats.feature_contacts = contacts.feature_contacts();
-        let counts = contacts.finish_step(
-            self.time,
-            h,
-            self.mesh.triangles(),
-            &self.x,
-            &mut self.ws.x_new,
-            &mut self.ws.v_new,
-            &self.pinned,
-            self.settings.parallelism(),
-        );
-        stats.contact_corrections = counts.corrected;
-        stats.crossings = counts.crossings;
-        stats.feature_corrections = counts.features;
-        stats.contact_seconds = start.elapsed().as_secs_f64();
-    }
-
     /// The bodies' contacts of a step of length `h`. A particle lying on another layer of
     /// the cloth that lies between it and the body is the other layer's to hold: held by
     /// the body too, at the body's own contact distance, it would be pressed into that
@@ -925,34 +900,40 @@ impl Simulation {
         );
     }
 
-    /// The end-of-step impact passes of the cloth against itself, after the bodies':
-    /// particles pinned or held by a body do not yield to them. Unless `unbounded`, the
-    /// passes give up past a budget of impacts, and this returns the budget.
-    fn finish_self_contacts(&mut self, h: f64, unbounded: bool, stats: &mut StepStats) -> Option<usize> {
-        let Some(sc) = &mut self.self_contacts else {
-            return None;
-        };
-        let budget = (!unbounded).then(|| IMPACTS_PER_PARTICLE * self.x.len());
-        let start = Instant::now();
-        stats.self_contacts = sc.contacts.len();
+    /// The end-of-step contact passes, on one view of the step's end: the bodies' first,
+    /// then the cloth's against itself, in which particles pinned or held by a body do
+    /// not yield. Unless `unbounded`, the cloth's passes give up past a budget of impacts,
+    /// and this returns the budget.
+    fn finish_contacts(&mut self, h: f64, unbounded: bool, stats: &mut StepStats) -> Option<usize> {
         let ws = &mut self.ws;
-        ws.support.fill(Vec3::zeros());
-        if let Some(contacts) = &self.contacts {
-            for c in contacts.particles.active.iter().filter(|c| c.live) {
-                ws.support[c.particle()] = c.normal;
-            }
-        }
-        let end = StepEnd {
+        let mut end = StepEnd {
+            t0: self.time,
+            h,
             x0: &self.x,
             x1: &mut ws.x_new,
             v1: &mut ws.v_new,
             masses: self.model.masses(),
             pinned: &self.pinned,
-            support: &ws.support,
-            h,
+            support: &mut ws.support,
+            par: self.settings.parallelism(),
         };
+        end.support.fill(Vec3::zeros());
+        if let Some(contacts) = &mut self.contacts {
+            let start = Instant::now();
+            stats.contacts = contacts.particles.active.iter().filter(|c| c.live).count();
+            stats.feature_contacts = contacts.feature_contacts();
+            let counts = contacts.finish_step(&mut end, self.mesh.triangles());
+            stats.contact_corrections = counts.corrected;
+            stats.crossings = counts.crossings;
+            stats.feature_corrections = counts.features;
+            stats.contact_seconds = start.elapsed().as_secs_f64();
+        }
+        let sc = self.self_contacts.as_mut()?;
+        let budget = (!unbounded).then(|| IMPACTS_PER_PARTICLE * self.x.len());
+        let start = Instant::now();
+        stats.self_contacts = sc.contacts.len();
         let interrupt = &self.interrupt;
-        let counts = sc.resolve(end, budget, self.settings.parallelism(), || interrupt.is_raised());
+        let counts = sc.resolve(&mut end, budget, || interrupt.is_raised());
         if let Some(contacts) = &mut self.contacts {
             for (i, d) in sc.shifted() {
                 contacts.particles.displaced(i, d);
