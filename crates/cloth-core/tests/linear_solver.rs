@@ -2,7 +2,8 @@
 //! the constraint filter.
 
 use cloth_core::linalg::{
-    BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter, Pcg, PcgSettings, Preconditioner,
+    BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter, FilteredSystem, Pcg, PcgSettings,
+    Preconditioner,
 };
 use cloth_core::math::{Mat3, Vec3};
 use cloth_core::parallelism::Parallelism;
@@ -92,7 +93,17 @@ fn pcg_agrees_with_sparse_cholesky() {
                 preconditioner,
             };
             let out = Pcg::new(n)
-                .solve(&a, &Filter::new(n, 0), &b, &mut x, &settings, 0.0, par)
+                .solve(
+                    FilteredSystem {
+                        matrix: &a,
+                        filter: &Filter::new(n, 0),
+                        rhs: &b,
+                    },
+                    &mut x,
+                    &settings,
+                    0.0,
+                    par,
+                )
                 .unwrap();
             assert!(out.converged && out.rel_residual <= 1e-12, "{out:?}");
             let err = max_diff(&x, &direct) / max_norm(&direct);
@@ -118,9 +129,11 @@ fn iteration_limit(preconditioner: Preconditioner) {
     let mut x = vec![Vec3::zeros(); 200];
     let out = Pcg::new(200)
         .solve(
-            &a,
-            &Filter::new(200, 0),
-            &b,
+            FilteredSystem {
+                matrix: &a,
+                filter: &Filter::new(200, 0),
+                rhs: &b,
+            },
             &mut x,
             &PcgSettings {
                 rel_tolerance: 1e-14,
@@ -216,9 +229,11 @@ fn check_filtered_solve(
     let mut y = vec![Vec3::zeros(); n];
     let out = Pcg::new(n)
         .solve(
-            a,
-            filter,
-            rhs,
+            FilteredSystem {
+                matrix: a,
+                filter,
+                rhs,
+            },
             &mut y,
             &PcgSettings {
                 rel_tolerance: 1e-13,

@@ -4,7 +4,8 @@
 //! Jacobi's.
 
 use cloth_core::linalg::{
-    BlockSparse, Constraint, ConstraintKind, Filter, Multigrid, Pcg, PcgSettings, Preconditioner, Setup,
+    BlockSparse, Constraint, ConstraintKind, Filter, FilteredSystem, Multigrid, Pcg, PcgSettings,
+    Preconditioner, Setup,
 };
 use cloth_core::parallelism::Parallelism;
 use cloth_core::{math::Mat3, math::Vec3, Fabric, GridBuilder, Pin, SimulationBuilder};
@@ -161,7 +162,18 @@ fn a_kept_hierarchy_serves_after_contacts_are_let_go() {
         filter.project(&mut rhs);
         filter.project(x);
         let out = pcg
-            .solve_with(a, filter, &rhs, x, &settings, 0.0, Parallelism::Sequential, setup)
+            .solve_with(
+                FilteredSystem {
+                    matrix: a,
+                    filter,
+                    rhs: &rhs,
+                },
+                x,
+                &settings,
+                0.0,
+                Parallelism::Sequential,
+                setup,
+            )
             .expect("solve");
         assert!(out.converged, "{out:?}");
         out.iterations
@@ -204,9 +216,11 @@ fn a_refined_solve_reaches_the_tight_answer() {
     let mut x = vec![Vec3::zeros(); n];
     let loose = pcg
         .solve(
-            &a,
-            &filter,
-            &b,
+            FilteredSystem {
+                matrix: &a,
+                filter: &filter,
+                rhs: &b,
+            },
             &mut x,
             &settings(1e-2),
             0.0,
@@ -215,9 +229,11 @@ fn a_refined_solve_reaches_the_tight_answer() {
         .expect("solve");
     let refined = pcg
         .solve_with(
-            &a,
-            &filter,
-            &b,
+            FilteredSystem {
+                matrix: &a,
+                filter: &filter,
+                rhs: &b,
+            },
             &mut x,
             &settings(1e-10),
             0.0,
@@ -228,9 +244,11 @@ fn a_refined_solve_reaches_the_tight_answer() {
     let mut expected = vec![Vec3::zeros(); n];
     let direct = Pcg::new(n)
         .solve(
-            &a,
-            &filter,
-            &b,
+            FilteredSystem {
+                matrix: &a,
+                filter: &filter,
+                rhs: &b,
+            },
             &mut expected,
             &settings(1e-10),
             0.0,
@@ -264,7 +282,17 @@ fn multigrid_is_exact_on_a_system_it_factors_whole() {
         ..Default::default()
     };
     let out = Pcg::new(a.n())
-        .solve(&a, &filter, &rhs, &mut x, &settings, 0.0, Parallelism::Sequential)
+        .solve(
+            FilteredSystem {
+                matrix: &a,
+                filter: &filter,
+                rhs: &rhs,
+            },
+            &mut x,
+            &settings,
+            0.0,
+            Parallelism::Sequential,
+        )
         .expect("solve");
     assert!(out.converged && out.iterations <= 1, "{out:?}");
 }
@@ -378,9 +406,11 @@ fn multigrid_handles_a_single_particle_and_a_fully_pinned_sheet() {
     };
     let out = Pcg::new(1)
         .solve(
-            &a,
-            &Filter::new(1, 0),
-            &b,
+            FilteredSystem {
+                matrix: &a,
+                filter: &Filter::new(1, 0),
+                rhs: &b,
+            },
             &mut x,
             &settings,
             0.0,
@@ -408,7 +438,17 @@ fn multigrid_handles_a_single_particle_and_a_fully_pinned_sheet() {
     let b = vec![Vec3::zeros(); n];
     let mut x = vec![Vec3::zeros(); n];
     let out = Pcg::new(n)
-        .solve(&a, &filter, &b, &mut x, &settings, 1e-12, Parallelism::Sequential)
+        .solve(
+            FilteredSystem {
+                matrix: &a,
+                filter: &filter,
+                rhs: &b,
+            },
+            &mut x,
+            &settings,
+            1e-12,
+            Parallelism::Sequential,
+        )
         .expect("solve");
     assert!(out.converged && x.iter().all(|v| *v == Vec3::zeros()), "{out:?}");
 }
@@ -423,7 +463,17 @@ fn iterations_for(a: &BlockSparse, b: &[Vec3], preconditioner: Preconditioner) -
         preconditioner,
     };
     let out = Pcg::new(a.n())
-        .solve(a, &filter, b, &mut x, &settings, 0.0, Parallelism::Rayon)
+        .solve(
+            FilteredSystem {
+                matrix: a,
+                filter: &filter,
+                rhs: b,
+            },
+            &mut x,
+            &settings,
+            0.0,
+            Parallelism::Rayon,
+        )
         .expect("solve");
     assert!(out.converged, "{preconditioner:?} on {} nodes: {out:?}", a.n());
     out.iterations

@@ -14,4 +14,4 @@ pub use block_sparse::BlockSparse;
 pub(crate) use diagonal_inverse::inverse_diagonal;
 pub use filter::{Constraint, ConstraintError, ConstraintKind, Filter};
 pub use multigrid::{Multigrid, MultigridError};
-pub use pcg::{Pcg, PcgError, PcgOutcome, PcgSettings, Preconditioner, Setup};
+pub use pcg::{FilteredSystem, Pcg, PcgError, PcgOutcome, PcgSettings, Preconditioner, Setup};

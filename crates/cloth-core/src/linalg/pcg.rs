@@ -195,6 +195,15 @@ pub enum Setup {
     Keep,
 }
 
+/// The system a solve is asked: the matrix `A`, the filter `S` of the step's constraints,
+/// and the right-hand side `b`.
+#[derive(Debug, Clone, Copy)]
+pub struct FilteredSystem<'a> {
+    pub matrix: &'a BlockSparse,
+    pub filter: &'a Filter,
+    pub rhs: &'a [Vec3],
+}
+
 /// Reusable PCG workspace for systems of `n` blocks.
 pub struct Pcg {
     inv_diag: Vec<Mat3>,
@@ -235,37 +244,39 @@ impl Pcg {
         }
     }
 
-    /// Solves the filtered system `(S A S + I - S) x = b` for SPD `A` (see [`Filter`]),
+    /// Solves the filtered system `(S A S + I - S) x = b` for SPD `A` (see [`Filter`] and
+    /// [`FilteredSystem`]),
     /// starting from the `x` given, to `settings` or to an absolute residual
     /// `abs_tolerance`, whichever is looser. `b` and `x` must be projected (`S b = b`,
     /// `S x = x`). The operator runs on rayon's pool when `par` says so; faer's own vector work
     /// stays sequential so the result does not depend on the number of threads.
     pub fn solve(
         &mut self,
-        a: &BlockSparse,
-        filter: &Filter,
-        b: &[Vec3],
+        system: FilteredSystem<'_>,
         x: &mut [Vec3],
         settings: &PcgSettings,
         abs_tolerance: f64,
         par: Parallelism,
     ) -> Result<PcgOutcome, PcgError> {
-        self.solve_with(a, filter, b, x, settings, abs_tolerance, par, Setup::Build)
+        self.solve_with(system, x, settings, abs_tolerance, par, Setup::Build)
     }
 
     /// As [`Pcg::solve`], keeping as much of the last solve's preconditioner as `setup`
     /// says.
     pub fn solve_with(
         &mut self,
-        a: &BlockSparse,
-        filter: &Filter,
-        b: &[Vec3],
+        system: FilteredSystem<'_>,
         x: &mut [Vec3],
         settings: &PcgSettings,
         abs_tolerance: f64,
         par: Parallelism,
         setup: Setup,
     ) -> Result<PcgOutcome, PcgError> {
+        let FilteredSystem {
+            matrix: a,
+            filter,
+            rhs: b,
+        } = system;
         assert_eq!(a.n(), self.inv_diag.len(), "PCG workspace built for another size");
         blocks_mut(self.rhs.as_mut()).copy_from_slice(b);
         blocks_mut(self.sol.as_mut()).copy_from_slice(x);

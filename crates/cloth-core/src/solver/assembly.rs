@@ -101,6 +101,21 @@ pub(crate) struct StiffnessTarget<'a> {
     pub h: f64,
 }
 
+/// What the cloth hangs in: gravity, m/s^2, and the wind its drag acts against, m/s.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Loads {
+    pub gravity: Vec3,
+    pub wind: Vec3,
+}
+
+/// Where [`ForceModel::evaluate`] writes: the forces, `K v`, and for an implicit step the
+/// matrix.
+pub(crate) struct ForceOutputs<'a, 'm> {
+    pub force: &'a mut [Vec3],
+    pub hv: &'a mut [Vec3],
+    pub stiffness: Option<StiffnessTarget<'m>>,
+}
+
 /// The cloth's internal and external forces over a fixed mesh.
 #[derive(Debug, Clone)]
 pub(crate) struct ForceModel {
@@ -319,21 +334,24 @@ impl ForceModel {
         self.vertex_drag[i]
     }
 
-    /// Forces at `(x, v)` into `force` (elastic, damping, gravity, drag), `K v` into `hv`
-    /// when damping or a stiffness target needs it, and `(h^2 + h beta) K` into the
-    /// target's matrix.
+    /// Forces at `(x, v)` under `loads` into `out.force` (elastic, damping, gravity, drag),
+    /// `K v` into `out.hv` when damping or a stiffness target needs it, and
+    /// `(h^2 + h beta) K` into the target's matrix.
     /// Returns the potential energy (elastic + gravitational).
     pub fn evaluate(
         &mut self,
         x: &[Vec3],
         v: &[Vec3],
-        gravity: &Vec3,
-        wind: &Vec3,
-        force: &mut [Vec3],
-        hv: &mut [Vec3],
-        mut stiffness: Option<StiffnessTarget<'_>>,
+        loads: &Loads,
+        out: ForceOutputs<'_, '_>,
         par: Parallelism,
     ) -> f64 {
+        let (gravity, wind) = (&loads.gravity, &loads.wind);
+        let ForceOutputs {
+            force,
+            hv,
+            mut stiffness,
+        } = out;
         let need_k = stiffness.is_some() || self.max_damping > 0.0 || self.seam_pull.damping > 0.0;
         let mode = if need_k {
             HessianMode::Projected
@@ -787,11 +805,15 @@ mod tests {
         model.evaluate(
             &x,
             &still,
-            &g,
-            &wind,
-            &mut f,
-            &mut hv,
-            None,
+            &Loads {
+                gravity: g,
+                wind,
+            },
+            ForceOutputs {
+                force: &mut f,
+                hv: &mut hv,
+                stiffness: None,
+            },
             Parallelism::Sequential,
         );
         let scale = f.iter().map(|f| f.norm()).fold(0.0, f64::max);
@@ -800,11 +822,15 @@ mod tests {
             model.evaluate(
                 x,
                 &still,
-                &g,
-                &wind,
-                &mut f,
-                &mut hv,
-                None,
+                &Loads {
+                    gravity: g,
+                    wind,
+                },
+                ForceOutputs {
+                    force: &mut f,
+                    hv: &mut hv,
+                    stiffness: None,
+                },
                 Parallelism::Sequential,
             )
         };
@@ -834,14 +860,18 @@ mod tests {
         model.evaluate(
             &x,
             &v,
-            &g,
-            &wind,
-            &mut f,
-            &mut hv,
-            Some(StiffnessTarget {
-                matrix: &mut matrix,
-                h: 1.0,
-            }),
+            &Loads {
+                gravity: g,
+                wind,
+            },
+            ForceOutputs {
+                force: &mut f,
+                hv: &mut hv,
+                stiffness: Some(StiffnessTarget {
+                    matrix: &mut matrix,
+                    h: 1.0,
+                }),
+            },
             Parallelism::Rayon,
         );
         // The same sum, element by element, in dense form.
@@ -957,11 +987,15 @@ mod tests {
             model.evaluate(
                 &x,
                 &v,
-                &zero,
-                &zero,
-                &mut f,
-                &mut hv,
-                Some(target),
+                &Loads {
+                    gravity: zero,
+                    wind: zero,
+                },
+                ForceOutputs {
+                    force: &mut f,
+                    hv: &mut hv,
+                    stiffness: Some(target),
+                },
                 Parallelism::Sequential,
             );
             (f, matrix.to_dense())
@@ -1007,11 +1041,15 @@ mod tests {
         model.evaluate(
             &x,
             &vec![zero; n],
-            &zero,
-            &zero,
-            &mut f,
-            &mut vec![zero; n],
-            None,
+            &Loads {
+                gravity: zero,
+                wind: zero,
+            },
+            ForceOutputs {
+                force: &mut f,
+                hv: &mut vec![zero; n],
+                stiffness: None,
+            },
             Parallelism::Sequential,
         );
         let scale = f.iter().map(|f| f.norm()).fold(0.0, f64::max);
@@ -1024,11 +1062,15 @@ mod tests {
         model.evaluate(
             &x,
             &v,
-            &zero,
-            &zero,
-            &mut f,
-            &mut vec![zero; n],
-            None,
+            &Loads {
+                gravity: zero,
+                wind: zero,
+            },
+            ForceOutputs {
+                force: &mut f,
+                hv: &mut vec![zero; n],
+                stiffness: None,
+            },
             Parallelism::Sequential,
         );
         let net: Vec3 = f.iter().sum();

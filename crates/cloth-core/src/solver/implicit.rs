@@ -2,10 +2,10 @@
 //! `(M - h dF/dv - h^2 dF/dx) dv = h (F0 + h dF/dx v0)`, `dx = h (v0 + dv)`,
 //! with the constraint filter in projected form.
 
-use super::assembly::StiffnessTarget;
+use super::assembly::{ForceOutputs, Loads, StiffnessTarget};
 use super::error::SolveFailure;
 use super::{Simulation, StepStats};
-use crate::linalg::{BlockSparse, Setup};
+use crate::linalg::{BlockSparse, FilteredSystem, Setup};
 use crate::math::{Mat3, Vec3};
 use std::time::Instant;
 
@@ -44,11 +44,15 @@ impl Simulation {
         let mut energy = self.model.evaluate(
             &self.x,
             &self.v,
-            &s.gravity,
-            &s.wind,
-            &mut ws.force,
-            &mut ws.hv,
-            target,
+            &Loads {
+                gravity: s.gravity,
+                wind: s.wind,
+            },
+            ForceOutputs {
+                force: &mut ws.force,
+                hv: &mut ws.hv,
+                stiffness: target,
+            },
             s.parallelism(),
         );
         if let Some(contacts) = &self.contacts {
@@ -148,9 +152,11 @@ impl Simulation {
                 settings.rel_tolerance = (SCOUT_TOLERANCE * settings.rel_tolerance).min(0.5);
             }
             let outcome = ws.pcg.solve_with(
-                &self.matrix,
-                &ws.filter,
-                &ws.rhs,
+                FilteredSystem {
+                    matrix: &self.matrix,
+                    filter: &ws.filter,
+                    rhs: &ws.rhs,
+                },
                 &mut ws.y,
                 &settings,
                 abs_tolerance,
