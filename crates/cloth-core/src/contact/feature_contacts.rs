@@ -106,15 +106,18 @@ impl FeatureContact {
 /// The feature contacts of a step: every feature under a cloth triangle within the
 /// thickness (and not through it by more than the thickness, which is the cloth lying on
 /// the far side of a feature, not touching it).
-pub(crate) fn detect_features(
+pub(crate) fn detect_features<G: Fn(usize) -> f64>(
     set: &mut FeatureSet,
     triangles: &[[usize; 3]],
     x: &[Vec3],
-    gap_bound: impl Fn(usize) -> f64,
-    max_thickness: f64,
+    reach: FeatureReach<G>,
     friction: impl Fn(Option<f64>, usize) -> f64,
     out: &mut Vec<FeatureContact>,
 ) {
+    let FeatureReach {
+        gap_bound,
+        max_thickness,
+    } = reach;
     out.clear();
     if set.features.is_empty() {
         return;
@@ -212,10 +215,9 @@ pub(crate) fn add_penalty(
     energy
 }
 
-/// What limits the features' pushes: the particles' inverse masses (zero for pinned ones),
-/// a lower bound on each particle's gap to the bodies, and the bodies' largest thickness.
-pub(crate) struct FeatureReach<'a, G> {
-    pub inv_mass: &'a [f64],
+/// How near the bodies each triangle may be: a lower bound on each particle's gap to them,
+/// and their largest thickness (a triangle farther than both is passed over).
+pub(crate) struct FeatureReach<G> {
     pub gap_bound: G,
     pub max_thickness: f64,
 }
@@ -229,10 +231,10 @@ pub(crate) fn resolve_features<G: Fn(usize) -> f64>(
     triangles: &[[usize; 3]],
     end: &mut StepEnd<'_>,
     x_solved: &[Vec3],
-    reach: FeatureReach<'_, G>,
+    inv_mass: &[f64],
+    reach: FeatureReach<G>,
 ) -> usize {
     let FeatureReach {
-        inv_mass,
         gap_bound,
         max_thickness,
     } = reach;
@@ -567,12 +569,15 @@ mod tests {
         let mut set = FeatureSet::default();
         set.update(|out| out.extend_from_slice(&features));
         let mut found = Vec::new();
+        let reach = FeatureReach {
+            gap_bound: |_| 0.0,
+            max_thickness: 0.01,
+        };
         detect_features(
             &mut set,
             &triangles,
             &x,
-            |_| 0.0,
-            0.01,
+            reach,
             |own: Option<f64>, _| own.unwrap_or(0.3),
             &mut found,
         );
@@ -621,11 +626,10 @@ mod tests {
             par: crate::parallelism::Parallelism::Sequential,
         };
         let reach = FeatureReach {
-            inv_mass: &[1.0; 3],
             gap_bound: |_| 0.0,
             max_thickness: 0.01,
         };
-        let n = resolve_features(&mut set, &[[0, 1, 2]], &mut end, &solved, reach);
+        let n = resolve_features(&mut set, &[[0, 1, 2]], &mut end, &solved, &[1.0; 3], reach);
         (n, x, v)
     }
 

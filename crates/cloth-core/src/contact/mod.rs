@@ -1,14 +1,14 @@
 //! Contact of the cloth with rigid bodies, reached through the [`Collider`] trait.
 
 mod collider;
-mod step_end;
+mod step;
 mod particle_contacts;
 mod feature_contacts;
 
 pub use collider::{Collider, Proximity, SharpFeature, SurfacePoint};
 pub(crate) use particle_contacts::ParticleContacts;
 pub use particle_contacts::{ContactMode, PassThrough, SLIP_SPEED};
-pub use step_end::StepEnd;
+pub use step::{StepEnd, StepStart};
 
 use crate::math::Vec3;
 use crate::mesh::ClothMesh;
@@ -159,17 +159,22 @@ impl Contacts {
         self.particles.friction_scale = scale;
     }
 
-    /// Finds the sharp features (at the step's end time `t1`) under cloth triangles at `x`.
-    pub fn detect_features(&mut self, t1: f64, triangles: &[[usize; 3]], x: &[Vec3]) {
+    /// Finds the sharp features (at the step's end time) under cloth triangles at the
+    /// step's start.
+    pub fn detect_features(&mut self, start: &StepStart<'_>, triangles: &[[usize; 3]]) {
         let collider = self.collider.as_ref();
+        let t1 = start.t0 + start.h;
         self.features.update(|out| collider.sharp_features(t1, out));
         let particles = &self.particles;
+        let reach = feature_contacts::FeatureReach {
+            gap_bound: |i| particles.feature_gap_bound(i),
+            max_thickness: self.collider.max_thickness(),
+        };
         feature_contacts::detect_features(
             &mut self.features,
             triangles,
-            x,
-            |i| particles.feature_gap_bound(i),
-            self.collider.max_thickness(),
+            start.x,
+            reach,
             |own, i| particles.friction(own, i),
             &mut self.feature_hits,
         );
@@ -215,12 +220,17 @@ impl Contacts {
             self.solved.extend_from_slice(end.x1);
         }
         let reach = feature_contacts::FeatureReach {
-            inv_mass: &self.inv_mass,
             gap_bound: |i| particles.feature_gap_bound(i),
             max_thickness: collider.max_thickness(),
         };
-        let features =
-            feature_contacts::resolve_features(&mut self.features, triangles, end, &self.solved, reach);
+        let features = feature_contacts::resolve_features(
+            &mut self.features,
+            triangles,
+            end,
+            &self.solved,
+            &self.inv_mass,
+            reach,
+        );
         end.support.fill(Vec3::zeros());
         for c in self.particles.active.iter().filter(|c| c.live) {
             end.support[c.particle()] = c.normal;

@@ -2,7 +2,7 @@
 //! `r'|S = 0` as a velocity constraint in the filter, Coulomb friction, release when the
 //! body would have to pull, and the continuous end-of-step test that keeps particles out.
 
-use super::{Collider, Proximity, StepEnd, SurfacePoint};
+use super::{Collider, Proximity, StepEnd, StepStart, SurfacePoint};
 use crate::linalg::{BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter};
 use crate::math::{Mat3, Vec3};
 use crate::parallelism::Parallelism;
@@ -252,18 +252,14 @@ impl ParticleContacts {
         }
     }
 
-    /// Chooses the particles in contact for a step of length `h` from `v`, and their
+    /// Chooses the particles in contact for the step from `start`, and their
     /// constraints: no velocity into the body; with no slip, none along it either.
     /// A particle outside the contact layer that `on_cloth(i, normal)` finds lying on
     /// other cloth between it and the body (`normal` the body's) is left to that cloth.
-    pub fn constrain(
-        &mut self,
-        h: f64,
-        v: &[Vec3],
-        masses: &[f64],
-        pinned: &[bool],
-        on_cloth: impl Fn(usize, &Vec3) -> bool,
-    ) {
+    pub fn constrain(&mut self, start: &StepStart<'_>, on_cloth: impl Fn(usize, &Vec3) -> bool) {
+        let StepStart {
+            h, v, masses, pinned, ..
+        } = *start;
         self.active.clear();
         for (i, s) in self.state.iter_mut().enumerate() {
             s.passing_at_start = s.passing;

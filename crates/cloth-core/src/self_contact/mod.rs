@@ -56,13 +56,12 @@ pub struct Tangle {
 pub use layer_pass::{LayerPass, LayerPassing};
 pub use settings::SelfCollision;
 
-use crate::contact::SLIP_SPEED;
+use crate::contact::{StepStart, SLIP_SPEED};
 use crate::energy::repulsion::{add_friction_drag, add_repulsion, RepulsionLaw};
 use crate::energy::Local;
 use crate::linalg::BlockSparse;
 use crate::math::{Mat3, Vec3};
 use crate::mesh::ClothMesh;
-use crate::parallelism::Parallelism;
 use crate::spatial::Aabb;
 use ccd::Impact;
 use chunks::ChunkedSearch;
@@ -270,17 +269,18 @@ impl SelfContacts {
         }
     }
 
-    /// Finds the contacts at `x` for a step of length `h` from velocities `v` (looking
-    /// ahead along the motion only in an `implicit` step; explicit steps are too short).
-    pub fn detect(
-        &mut self,
-        x: &[Vec3],
-        v: &[Vec3],
-        pinned: &[bool],
-        h: f64,
-        implicit: bool,
-        par: Parallelism,
-    ) {
+    /// Finds the contacts at the step's start (looking ahead along the motion only in an
+    /// implicit step; explicit steps are too short).
+    pub fn detect(&mut self, start: &StepStart<'_>) {
+        let StepStart {
+            x,
+            v,
+            pinned,
+            h,
+            implicit,
+            par,
+            ..
+        } = *start;
         let step = implicit.then_some(h);
         let topo = &self.topology;
         // Two triangles' boxes, each grown by half the reach, overlap where they may be

@@ -805,10 +805,7 @@ mod tests {
         model.evaluate(
             &x,
             &still,
-            &Loads {
-                gravity: g,
-                wind,
-            },
+            &Loads { gravity: g, wind },
             ForceOutputs {
                 force: &mut f,
                 hv: &mut hv,
@@ -822,10 +819,7 @@ mod tests {
             model.evaluate(
                 x,
                 &still,
-                &Loads {
-                    gravity: g,
-                    wind,
-                },
+                &Loads { gravity: g, wind },
                 ForceOutputs {
                     force: &mut f,
                     hv: &mut hv,
@@ -860,10 +854,7 @@ mod tests {
         model.evaluate(
             &x,
             &v,
-            &Loads {
-                gravity: g,
-                wind,
-            },
+            &Loads { gravity: g, wind },
             ForceOutputs {
                 force: &mut f,
                 hv: &mut hv,

@@ -6,7 +6,7 @@ use super::rest::MIN_WINDOW;
 use super::{
     Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
 };
-use crate::contact::{Collider, Contacts, PassThrough, StepEnd};
+use crate::contact::{Collider, Contacts, PassThrough, StepEnd, StepStart};
 use crate::energy::attachment::Attachment;
 use crate::error::ParamError;
 use crate::fabric::Fabric;
@@ -660,10 +660,7 @@ impl Simulation {
         // which allocates a block every 63 jobs; run the whole step as one job inside the
         // pool instead, so the many parallel loops of a step use a worker's own queue.
         let integrate = |sim: &mut Self| {
-            let start = Instant::now();
-            sim.detect_self_contacts(h);
-            let detection = start.elapsed().as_secs_f64();
-            sim.constrain_contacts(h);
+            let detection = sim.start_contacts(h);
             sim.refill_filter(h)?;
             let mut stats = match sim.settings.integrator {
                 Integrator::ImplicitEuler => sim.implicit_step(h, velocity_accuracy)?,
@@ -868,36 +865,35 @@ impl Simulation {
         Ok(())
     }
 
-    /// The bodies' contacts of a step of length `h`. A particle lying on another layer of
-    /// the cloth that lies between it and the body is the other layer's to hold: held by
-    /// the body too, at the body's own contact distance, it would be pressed into that
-    /// layer.
-    fn constrain_contacts(&mut self, h: f64) {
-        let Some(contacts) = &mut self.contacts else {
-            return;
+    /// The start-of-step contact passes, on one view of the step's start: the cloth's
+    /// contacts with itself found, then the bodies' chosen. A particle lying on another
+    /// layer of the cloth that lies between it and the body is the other layer's to hold:
+    /// held by the body too, at the body's own contact distance, it would be pressed into
+    /// that layer. Returns the seconds the cloth's own search took.
+    fn start_contacts(&mut self, h: f64) -> f64 {
+        let start = StepStart {
+            t0: self.time,
+            h,
+            x: &self.x,
+            v: &self.v,
+            masses: self.model.masses(),
+            pinned: &self.pinned,
+            implicit: self.settings.integrator == Integrator::ImplicitEuler,
+            par: self.settings.parallelism(),
         };
-        let sc = self.self_contacts.as_ref();
-        contacts
-            .particles
-            .constrain(h, &self.v, self.model.masses(), &self.pinned, |i, normal| {
+        let clock = Instant::now();
+        if let Some(sc) = &mut self.self_contacts {
+            sc.detect(&start);
+        }
+        let detection = clock.elapsed().as_secs_f64();
+        if let Some(contacts) = &mut self.contacts {
+            let sc = self.self_contacts.as_ref();
+            contacts.particles.constrain(&start, |i, normal| {
                 sc.is_some_and(|sc| sc.lies_on_cloth(i, normal))
             });
-        contacts.detect_features(self.time + h, self.mesh.triangles(), &self.x);
-    }
-
-    /// Finds the cloth's contacts with itself at the start of a step of length `h`.
-    fn detect_self_contacts(&mut self, h: f64) {
-        let Some(sc) = &mut self.self_contacts else {
-            return;
-        };
-        sc.detect(
-            &self.x,
-            &self.v,
-            &self.pinned,
-            h,
-            self.settings.integrator == Integrator::ImplicitEuler,
-            self.settings.parallelism(),
-        );
+            contacts.detect_features(&start, self.mesh.triangles());
+        }
+        detection
     }
 
     /// The end-of-step contact passes, on one view of the step's end: the bodies' first,
