@@ -20,6 +20,7 @@ pub mod fabric;
 pub mod energy;
 pub mod metrics;
 pub mod linalg;
+mod forces;
 pub mod contact;
 pub mod self_contact;
 pub mod solver;

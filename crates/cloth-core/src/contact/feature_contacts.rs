@@ -10,7 +10,7 @@
 
 use super::particle_contacts::SLIP_SPEED;
 use super::{SharpFeature, StepEnd};
-use crate::linalg::BlockSparse;
+use crate::forces::ForceOutputs;
 use crate::math::{Mat3, Vec3};
 use crate::spatial::{Aabb, Bvh};
 
@@ -171,10 +171,14 @@ pub(crate) fn add_penalty(
     stiffness: f64,
     x: &[Vec3],
     v: &[Vec3],
-    force: &mut [Vec3],
-    kv: &mut [Vec3],
-    mut implicit: Option<(&mut BlockSparse, f64)>,
+    out: ForceOutputs<'_, '_>,
 ) -> f64 {
+    let ForceOutputs {
+        force,
+        hv: kv,
+        stiffness: target,
+    } = out;
+    let mut implicit = target.map(|t| (t.matrix, t.h));
     let mut energy = 0.0;
     for c in contacts {
         let depth = c.thickness - c.gap(x);
@@ -424,6 +428,7 @@ fn deepest(ends: [Option<FeatureHit>; 2]) -> Option<FeatureHit> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::linalg::BlockSparse;
 
     fn feature_under_triangle_deepest(p: &[Vec3; 3], f: &SharpFeature) -> Option<FeatureHit> {
         feature_under_triangle(p, f).and_then(deepest)
@@ -461,8 +466,15 @@ mod tests {
         let x = [Vec3::new(0.0, 0.0, 0.006); 3];
         let (mut force, mut kv) = (vec![Vec3::zeros(); 3], vec![Vec3::zeros(); 3]);
         let mut m = BlockSparse::from_pairs(3, [(0, 1), (1, 2), (0, 2)]);
-        let target = implicit.then_some((&mut m, 0.01));
-        add_penalty(&[contact], 100.0, &x, &[v; 3], &mut force, &mut kv, target);
+        let out = ForceOutputs {
+            force: &mut force,
+            hv: &mut kv,
+            stiffness: implicit.then_some(crate::forces::StiffnessTarget {
+                matrix: &mut m,
+                h: 0.01,
+            }),
+        };
+        add_penalty(&[contact], 100.0, &x, &[v; 3], out);
         (force, m)
     }
 

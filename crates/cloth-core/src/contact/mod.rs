@@ -10,6 +10,7 @@ pub(crate) use particle_contacts::ParticleContacts;
 pub use particle_contacts::{ContactMode, PassThrough, SLIP_SPEED};
 pub use step::{StepEnd, StepStart};
 
+use crate::forces::ForceOutputs;
 use crate::math::Vec3;
 use crate::mesh::ClothMesh;
 use std::sync::Arc;
@@ -187,23 +188,8 @@ impl Contacts {
 
     /// The feature penalty's forces and `K v`, and for an implicit step of length `h` its
     /// matrix terms and friction (see [`feature_contacts::add_penalty`]); returns its energy.
-    pub fn add_feature_penalty(
-        &self,
-        x: &[Vec3],
-        v: &[Vec3],
-        force: &mut [Vec3],
-        kv: &mut [Vec3],
-        implicit: Option<(&mut crate::linalg::BlockSparse, f64)>,
-    ) -> f64 {
-        feature_contacts::add_penalty(
-            &self.feature_hits,
-            self.feature_stiffness,
-            x,
-            v,
-            force,
-            kv,
-            implicit,
-        )
+    pub fn add_feature_penalty(&self, x: &[Vec3], v: &[Vec3], out: ForceOutputs<'_, '_>) -> f64 {
+        feature_contacts::add_penalty(&self.feature_hits, self.feature_stiffness, x, v, out)
     }
 
     /// The end-of-step passes: the push-out speed taken back out of the contacts'

@@ -16,6 +16,7 @@ use crate::energy::{
     HessianMode, Local, TriangleRest,
 };
 use crate::fabric::{BendingLaw, Fabric};
+use crate::forces::ForceOutputs;
 use crate::linalg::BlockSparse;
 use crate::math::{Mat3, Vec3};
 use crate::mesh::ClothMesh;
@@ -94,26 +95,11 @@ impl<T: std::ops::AddAssign> Shared<T> {
     }
 }
 
-/// Where the stiffness goes: `matrix += (h^2 + h beta) K`, each element with its fabric's
-/// Rayleigh damping `beta`.
-pub(crate) struct StiffnessTarget<'a> {
-    pub matrix: &'a mut BlockSparse,
-    pub h: f64,
-}
-
 /// What the cloth hangs in: gravity, m/s^2, and the wind its drag acts against, m/s.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Loads {
     pub gravity: Vec3,
     pub wind: Vec3,
-}
-
-/// Where [`ForceModel::evaluate`] writes: the forces, `K v`, and for an implicit step the
-/// matrix.
-pub(crate) struct ForceOutputs<'a, 'm> {
-    pub force: &'a mut [Vec3],
-    pub hv: &'a mut [Vec3],
-    pub stiffness: Option<StiffnessTarget<'m>>,
 }
 
 /// The cloth's internal and external forces over a fixed mesh.
@@ -656,6 +642,7 @@ fn color<E, const N: usize>(
 mod tests {
     use super::*;
     use crate::energy::bending::add_bending;
+    use crate::forces::StiffnessTarget;
     use crate::mesh::GridBuilder;
     use crate::Fabric;
     use rand::rngs::StdRng;

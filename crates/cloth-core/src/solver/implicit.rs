@@ -2,9 +2,10 @@
 //! `(M - h dF/dv - h^2 dF/dx) dv = h (F0 + h dF/dx v0)`, `dx = h (v0 + dv)`,
 //! with the constraint filter in projected form.
 
-use super::assembly::{ForceOutputs, Loads, StiffnessTarget};
+use super::assembly::Loads;
 use super::error::SolveFailure;
 use super::{Simulation, StepStats};
+use crate::forces::{ForceOutputs, StiffnessTarget};
 use crate::linalg::{BlockSparse, FilteredSystem, Setup};
 use crate::math::{Mat3, Vec3};
 use std::time::Instant;
@@ -56,8 +57,15 @@ impl Simulation {
             s.parallelism(),
         );
         if let Some(contacts) = &self.contacts {
-            let implicit = with_stiffness.then_some((&mut self.matrix, h));
-            energy += contacts.add_feature_penalty(&self.x, &self.v, &mut ws.force, &mut ws.hv, implicit);
+            let out = ForceOutputs {
+                force: &mut ws.force,
+                hv: &mut ws.hv,
+                stiffness: with_stiffness.then_some(StiffnessTarget {
+                    matrix: &mut self.matrix,
+                    h,
+                }),
+            };
+            energy += contacts.add_feature_penalty(&self.x, &self.v, out);
         }
         if let Some(sc) = &mut self.self_contacts {
             // An implicit step sets the friction between layers after a scouting solve;
