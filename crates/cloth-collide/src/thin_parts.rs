@@ -2,6 +2,7 @@
 //! an A pose, which GarmentCode's skirts are placed round and which cloth may pass (see
 //! `cloth_core::PassThrough`).
 
+use cloth_core::math::union_find::find;
 use cloth_core::math::Vec3;
 
 /// Where the body is thinner than this under its surface (along the inward normal), m,
@@ -37,23 +38,16 @@ pub(crate) fn thin_triangles(
     let middle = 0.5 * (low + high);
     // Runs of thin triangles, joined through shared corners.
     let mut parent: Vec<u32> = (0..vertices.len() as u32).collect();
-    fn root(parent: &mut [u32], mut v: u32) -> u32 {
-        while parent[v as usize] != v {
-            parent[v as usize] = parent[parent[v as usize] as usize];
-            v = parent[v as usize];
-        }
-        v
-    }
     for (t, _) in triangles.iter().zip(&narrow).filter(|(_, &n)| n) {
-        let r = root(&mut parent, t[0]);
+        let r = find(&mut parent, t[0]);
         for &v in &t[1..] {
-            let s = root(&mut parent, v);
+            let s = find(&mut parent, v);
             parent[s as usize] = r;
         }
     }
     let mut top = vec![f64::NEG_INFINITY; vertices.len()];
     for (t, _) in triangles.iter().zip(&narrow).filter(|(_, &n)| n) {
-        let r = root(&mut parent, t[0]) as usize;
+        let r = find(&mut parent, t[0]) as usize;
         for &v in t {
             top[r] = top[r].max(height(v));
         }
@@ -61,7 +55,7 @@ pub(crate) fn thin_triangles(
     triangles
         .iter()
         .zip(&narrow)
-        .map(|(t, &n)| n && top[root(&mut parent, t[0]) as usize] > middle)
+        .map(|(t, &n)| n && top[find(&mut parent, t[0]) as usize] > middle)
         .collect()
 }
 

@@ -1,5 +1,6 @@
 //! Rigid-body surfaces: primitives, file input, validation errors, sharp features.
 
+use cloth_core::math::union_find::union;
 use std::collections::HashSet;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -39,15 +40,8 @@ fn euler(s: &TriSurface) -> i64 {
 /// Number of vertex-connected components.
 fn components(s: &TriSurface) -> usize {
     let mut parent: Vec<usize> = (0..s.vertices().len()).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            i = p[i];
-        }
-        i
-    }
     for (a, b) in edges(s) {
-        let (ra, rb) = (root(&mut parent, a as usize), root(&mut parent, b as usize));
-        parent[ra] = rb;
+        union(&mut parent, a as usize, b as usize);
     }
     (0..parent.len()).filter(|&i| parent[i] == i).count()
 }

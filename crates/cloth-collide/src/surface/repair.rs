@@ -1,6 +1,7 @@
 //! Building a surface from a mesh as users have it: refused only when it can have no
 //! inside at all, otherwise repaired where that is sound and described where it is not.
 
+use cloth_core::math::union_find::{find, union};
 use cloth_core::math::Vec3;
 
 use super::defects::SurfaceDefect;
@@ -163,20 +164,12 @@ fn edge_defects(vertices: &[Vec3], sides: &[Side], defects: &mut Vec<SurfaceDefe
     if !open.is_empty() {
         // Loops: the open edges' vertices joined by the open edges.
         let mut parent: Vec<u32> = (0..vertices.len() as u32).collect();
-        fn root(parent: &mut [u32], mut i: u32) -> u32 {
-            while parent[i as usize] != i {
-                parent[i as usize] = parent[parent[i as usize] as usize];
-                i = parent[i as usize];
-            }
-            i
-        }
         for s in &open {
-            let (a, b) = (root(&mut parent, s.lo), root(&mut parent, s.hi));
-            parent[a.max(b) as usize] = a.min(b);
+            union(&mut parent, s.lo, s.hi);
         }
         let mut perimeter = std::collections::BTreeMap::<u32, (f64, u32)>::new();
         for s in &open {
-            let r = root(&mut parent, s.lo);
+            let r = find(&mut parent, s.lo);
             let length = (vertices[s.hi as usize] - vertices[s.lo as usize]).norm();
             perimeter.entry(r).or_insert((0.0, s.lo)).0 += length;
         }

@@ -1,7 +1,8 @@
 //! The basic types every other module is written in: 3-vectors and 3x3 blocks, and the
-//! geometric predicates on points, segments and triangles.
+//! geometric predicates on points, segments and triangles, and disjoint sets.
 
 pub mod predicates;
+pub mod union_find;
 
 /// A point, a velocity or a force.
 pub type Vec3 = nalgebra::Vector3<f64>;

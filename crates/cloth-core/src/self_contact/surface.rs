@@ -9,7 +9,8 @@
 
 use super::cone::Cone;
 use super::contour::{outer, star_shaped, Contours, Motion};
-use super::topology::{find, Topology};
+use super::topology::Topology;
+use crate::math::union_find::union;
 use crate::math::Vec3;
 use crate::spatial::{Aabb, Bvh};
 
@@ -177,9 +178,7 @@ fn connected_nodes(bvh: &Bvh, topology: &Topology) -> Vec<bool> {
                     if member[s] != k as u32 {
                         continue;
                     }
-                    let (a, b) = (find(&mut parent, t), find(&mut parent, s as u32));
-                    if a != b {
-                        parent[a.max(b) as usize] = a.min(b);
+                    if union(&mut parent, t, s as u32) {
                         pieces -= 1;
                     }
                 }

@@ -11,6 +11,7 @@
 //! its own thickness, nor within one cell without folding its cells flat.
 
 use crate::math::predicates::{closest_on_segments, closest_on_triangle, segment_crosses_triangle};
+use crate::math::union_find::{find, union};
 use crate::math::Vec3;
 use crate::mesh::{within_rings, ClothMesh};
 use nalgebra::Vector2;
@@ -65,16 +66,6 @@ pub(crate) struct Topology {
     rest_radius: f64,
 }
 
-/// The root of `i` in a union-find forest, halving the path.
-pub(super) fn find(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        let up = parent[parent[i as usize] as usize];
-        parent[i as usize] = up;
-        i = up;
-    }
-    i
-}
-
 /// Compressed rows of `items` listed under each of their particles.
 fn incidence<const N: usize>(n: usize, items: &[[u32; N]]) -> (Vec<u32>, Vec<u32>) {
     let mut start = vec![0u32; n + 1];
@@ -108,8 +99,7 @@ impl Topology {
         let n = mesh.vertex_count();
         let mut parent: Vec<u32> = (0..n as u32).collect();
         for &[a, b] in seams {
-            let (ra, rb) = (find(&mut parent, a as u32), find(&mut parent, b as u32));
-            parent[ra.max(rb) as usize] = ra.min(rb);
+            union(&mut parent, a as u32, b as u32);
         }
         let rep: Vec<u32> = (0..n as u32).map(|i| find(&mut parent, i)).collect();
 
@@ -185,8 +175,7 @@ impl Topology {
                 corner_uv[t][k]
             };
             if h.edge.iter().all(|&i| uv(s, i) == uv(t, i)) {
-                let (a, b) = (find(&mut chart, s as u32), find(&mut chart, t as u32));
-                chart[a.max(b) as usize] = a.min(b);
+                union(&mut chart, s as u32, t as u32);
             }
         }
         let roots: Vec<u32> = (0..triangles.len() as u32).map(|t| find(&mut chart, t)).collect();

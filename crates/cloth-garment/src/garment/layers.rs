@@ -6,6 +6,7 @@
 //! into place with the cloth's collision with itself on from the first step.
 
 use super::Garment;
+use cloth_core::math::union_find::{find, union};
 use cloth_core::math::Vec3;
 use nalgebra::Vector2;
 
@@ -57,13 +58,6 @@ impl Garment {
             .collect();
         // Overlapping pairs in one plane, joined into groups.
         let mut group: Vec<usize> = (0..flats.len()).collect();
-        fn root(group: &mut [usize], mut i: usize) -> usize {
-            while group[i] != i {
-                group[i] = group[group[i]];
-                i = group[i];
-            }
-            i
-        }
         let mut any = false;
         for a in 0..flats.len() {
             for b in a + 1..flats.len() {
@@ -76,8 +70,7 @@ impl Garment {
                     continue;
                 }
                 if overlap(fa, fb, x) || overlap(fb, fa, x) {
-                    let (ra, rb) = (root(&mut group, a), root(&mut group, b));
-                    group[ra.max(rb)] = ra.min(rb);
+                    union(&mut group, a, b);
                     any = true;
                 }
             }
@@ -87,7 +80,7 @@ impl Garment {
         }
         let mut groups: Vec<Vec<usize>> = vec![Vec::new(); flats.len()];
         for p in 0..flats.len() {
-            let r = root(&mut group, p);
+            let r = find(&mut group, p);
             groups[r].push(p);
         }
         groups.retain(|g| g.len() > 1);

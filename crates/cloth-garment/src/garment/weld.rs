@@ -1,6 +1,7 @@
 //! Welding sewn seams: each group of paired vertices becomes one particle.
 
 use super::{Garment, GarmentError};
+use cloth_core::math::union_find::{find, union};
 use cloth_core::{math::Vec3, ClothMesh};
 
 /// The garment's mesh after welding, and where each unsewn vertex went.
@@ -18,23 +19,13 @@ impl Garment {
     pub(crate) fn seam_groups(&self) -> Vec<usize> {
         let n = self.mesh.vertex_count();
         let mut parent: Vec<usize> = (0..n).collect();
-        fn root(parent: &mut [usize], mut i: usize) -> usize {
-            while parent[i] != i {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
-            }
-            i
-        }
         for [a, b] in self.seam_pairs() {
-            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-            if ra != rb {
-                parent[ra.max(rb)] = ra.min(rb);
-            }
+            union(&mut parent, a, b);
         }
         let mut particle_of = vec![usize::MAX; n];
         let mut count = 0;
         for i in 0..n {
-            let r = root(&mut parent, i);
+            let r = find(&mut parent, i);
             if particle_of[r] == usize::MAX {
                 particle_of[r] = count;
                 count += 1;
