@@ -8,7 +8,7 @@
 //!   layers as a drag against their sliding (set after a scouting solve), both with their
 //!   Jacobians in the implicit system as transient couplings of the block-sparse matrix,
 //!   which the multigrid carries to its coarse levels. Found by walking a bounding volume
-//!   hierarchy of the triangles, refitted each step, against itself (`surface`).
+//!   hierarchy of the triangles, refitted each step, against itself (`cone_tree`).
 //! - **Impacts, after it.** Every particle-triangle and edge-edge pair is tested for
 //!   passing through each other along the straight paths of the step (`ccd`). A pair
 //!   that does is put back on its side, inside the contact distance where the next step's
@@ -30,7 +30,7 @@ mod contour;
 mod ccd;
 mod intersections;
 mod proximity;
-mod surface;
+mod cone_tree;
 mod response;
 mod untangling;
 
@@ -66,10 +66,10 @@ use crate::spatial::Aabb;
 use ccd::Impact;
 use chunks::ChunkedSearch;
 use cone::Cone;
+use cone_tree::{ConeTree, Search};
 use contour::Motion;
 use proximity::Cloth;
 pub use proximity::Contact;
-use surface::{Search, SurfaceTree};
 use topology::Topology;
 
 /// Impulse passes over the impacts before the remaining ones are merged into zones.
@@ -162,7 +162,7 @@ pub(crate) struct SelfContacts {
     reach: f64,
     /// Within this of each other, primitives passing through one plane touch, m.
     touch: f64,
-    surface: SurfaceTree,
+    tree: ConeTree,
     /// The step's contacts, each one's friction drag (N s/m) and the stiffness of its
     /// repulsion at the start of the step (N/m).
     pub contacts: Vec<Contact>,
@@ -233,7 +233,7 @@ impl SelfContacts {
         let thinnest = 2.0 * half_thickness.iter().copied().fold(f64::INFINITY, f64::min);
         let touch = 0.02 * thinnest;
         let pull_step = PULL_APART * thinnest;
-        let surface = SurfaceTree::new(&topology, mesh.positions());
+        let tree = ConeTree::new(&topology, mesh.positions());
         Self {
             stiffness: settings
                 .stiffness
@@ -253,7 +253,7 @@ impl SelfContacts {
             braked: Vec::with_capacity(n),
             reach,
             touch,
-            surface,
+            tree,
             contacts: Vec::new(),
             drag: Vec::new(),
             normal_stiffness: Vec::new(),
@@ -286,7 +286,7 @@ impl SelfContacts {
         // Two triangles' boxes, each grown by half the reach, overlap where they may be
         // within it.
         let reach = (1.0 + proximity::LOOK_AHEAD) * self.reach;
-        self.surface.refit(
+        self.tree.refit(
             |t| Aabb::of(topo.triangles[t].map(|i| x[i as usize])).inflated(0.5 * reach),
             |t| {
                 let [a, b, c] = topo.triangles[t].map(|i| x[i as usize]);
@@ -298,7 +298,7 @@ impl SelfContacts {
             motion: Motion { start: x, end: x },
             only_dirty: false,
         };
-        self.surface.plan(&search);
+        self.tree.plan(&search);
         let cloth = Cloth {
             topology: topo,
             x,
@@ -308,10 +308,10 @@ impl SelfContacts {
             half_thickness: &self.half_thickness,
             friction: &self.friction,
         };
-        let surface = &self.surface;
+        let tree = &self.tree;
         self.contact_search
-            .run(&surface.tasks, par, &mut self.contacts, |task, found| {
-                surface.triangle_pairs(task, &search, |s, t| {
+            .run(&tree.tasks, par, &mut self.contacts, |task, found| {
+                tree.triangle_pairs(task, &search, |s, t| {
                     // A triangle's own particles and edges are exempt from it.
                     if s == t {
                         return;

@@ -4,8 +4,8 @@
 
 use super::ccd::{self, Impact, Paths};
 use super::cone::Cone;
+use super::cone_tree::Search;
 use super::contour::Motion;
-use super::surface::Search;
 use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZONE_PASSES};
 use crate::contact::StepEnd;
 use crate::math::union_find::find;
@@ -200,7 +200,7 @@ impl SelfContacts {
         };
         let swept = |i: u32| Aabb::of([x0[i as usize], x1[i as usize]]);
         let over = |ids: &[u32]| ids.iter().fold(Aabb::empty(), |b, &i| b.union(&swept(i)));
-        self.surface.refit(
+        self.tree.refit(
             |t| over(&topo.triangles[t]).inflated(0.5 * pad),
             |t| {
                 // The normal over the step, (u0 + t du) x (v0 + t dv), is a quadratic with
@@ -215,7 +215,7 @@ impl SelfContacts {
         );
         let dirty = &self.response.dirty;
         if !full {
-            self.surface
+            self.tree
                 .mark(|t| topo.triangles[t].iter().any(|&i| dirty[i as usize]));
         }
         let search = Search {
@@ -223,7 +223,7 @@ impl SelfContacts {
             motion: Motion { start: x0, end: x1 },
             only_dirty: !full,
         };
-        self.surface.plan(&search);
+        self.tree.plan(&search);
         let half = &self.half_thickness;
         let distance =
             |p: [u32; 4]| move |w: &[f64; 4]| (0..4).map(|k| w[k].abs() * half[p[k] as usize]).sum::<f64>();
@@ -233,14 +233,14 @@ impl SelfContacts {
         };
         // In a pass after the first, only pairs with a particle moved since.
         let fresh = |p: &[u32]| full || p.iter().any(|&i| dirty[i as usize]);
-        let surface = &self.surface;
+        let tree = &self.tree;
         let mut impacts = std::mem::take(&mut self.response.impacts);
         self.impact_search
-            .run(&surface.tasks, par, &mut impacts, |task, found| {
+            .run(&tree.tasks, par, &mut impacts, |task, found| {
                 if stop() {
                     return;
                 }
-                surface.triangle_pairs(task, &search, |s, t| {
+                tree.triangle_pairs(task, &search, |s, t| {
                     if s == t {
                         return;
                     }

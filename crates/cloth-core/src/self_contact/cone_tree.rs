@@ -18,7 +18,7 @@ use crate::spatial::{Aabb, Bvh};
 const TASKS: usize = 256;
 
 #[derive(Debug, Clone)]
-pub(crate) struct SurfaceTree {
+pub(crate) struct ConeTree {
     pub bvh: Bvh,
     cones: Vec<Cone>,
     /// Whether each node's triangles are one connected piece (fixed with the mesh).
@@ -30,7 +30,7 @@ pub(crate) struct SurfaceTree {
     scratch: Vec<(u32, u32)>,
 }
 
-impl SurfaceTree {
+impl ConeTree {
     /// The tree of `topology`'s triangles where they are at `x`.
     pub fn new(topology: &Topology, x: &[Vec3]) -> Self {
         let centres: Vec<Vec3> = topology
