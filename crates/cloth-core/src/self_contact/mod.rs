@@ -54,7 +54,7 @@ pub struct Tangle {
     pub released: Option<u64>,
 }
 pub use layer_pass::{LayerPass, LayerPassing};
-pub use settings::SelfCollision;
+pub use settings::{LayerFabric, SelfCollision};
 
 use crate::contact::{StepStart, SLIP_SPEED};
 use crate::energy::repulsion::{add_friction_drag, add_repulsion, RepulsionLaw};
@@ -209,17 +209,20 @@ const LOOSE_RINGS: usize = 1;
 
 impl SelfContacts {
     /// Self-collision for `mesh` with `seams` (pairs of particles to be joined), each
-    /// particle of fabric `thickness[i]`, `friction[i]`; `settings` override them.
-    pub fn new(
+    /// particle's layer as `fabric` says; `settings` override it.
+    pub fn new<T: Fn(usize) -> f64, F: Fn(usize) -> f64>(
         mesh: &ClothMesh,
         seams: &[[usize; 2]],
         masses: &[f64],
         pinned: &[bool],
         settings: &SelfCollision,
-        thickness: impl Fn(usize) -> f64,
-        friction: impl Fn(usize) -> f64,
-        membrane_stiffness: f64,
+        fabric: LayerFabric<T, F>,
     ) -> Self {
+        let LayerFabric {
+            thickness,
+            friction,
+            membrane_stiffness,
+        } = fabric;
         let n = mesh.vertex_count();
         let half_thickness: Vec<f64> = (0..n)
             .map(|i| 0.5 * settings.thickness.unwrap_or_else(|| thickness(i)))

@@ -67,3 +67,12 @@ impl SelfCollision {
         }
     }
 }
+
+/// What the fabric gives each particle's layer: its thickness (m) and friction
+/// coefficient, particle by particle, and the stiffest membrane of the fabrics (N/m),
+/// from which the contact springs' stiffness is set.
+pub struct LayerFabric<T, F> {
+    pub thickness: T,
+    pub friction: F,
+    pub membrane_stiffness: f64,
+}

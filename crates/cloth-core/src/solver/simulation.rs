@@ -13,7 +13,7 @@ use crate::fabric::Fabric;
 use crate::linalg::{BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter, Pcg};
 use crate::math::Vec3;
 use crate::mesh::ClothMesh;
-use crate::self_contact::{Intersections, LayerPass, LayerPassing, SelfContacts, Tangle};
+use crate::self_contact::{Intersections, LayerFabric, LayerPass, LayerPassing, SelfContacts, Tangle};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
@@ -1210,9 +1210,11 @@ fn self_contacts_for(
         model.masses(),
         pinned,
         sc,
-        |i| fabrics[of[i]].thickness,
-        |i| fabrics[of[i]].friction,
-        stiffest,
+        LayerFabric {
+            thickness: |i: usize| fabrics[of[i]].thickness,
+            friction: |i: usize| fabrics[of[i]].friction,
+            membrane_stiffness: stiffest,
+        },
     ))
 }
 
