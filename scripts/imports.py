@@ -224,7 +224,7 @@ class Resolver:
         return here
 
 
-def check_level(src: Path, prefix: list[str], order: list[str], verbose: bool):
+def check_level(src: Path, prefix: list[str], order: list[str]):
     """Upward imports and cycles between the modules `order` declared under `prefix`."""
     rank = {name: k for k, name in enumerate(order)}
     rank[ROOT] = len(order)
@@ -300,7 +300,8 @@ def strongly_connected(nodes: list[str], edges: set[tuple[str, str]]) -> list[li
     return comps
 
 
-def report(crate: Path, depth: int, verbose: bool) -> tuple[int, int]:
+def report(crate: Path, depth: int, verbose: bool) -> int:
+    """Prints the crate's report; returns how many imports run back up and cycles it found."""
     src = crate / "src"
     root = src / "lib.rs"
     if not root.exists():
@@ -316,7 +317,7 @@ def report(crate: Path, depth: int, verbose: bool) -> tuple[int, int]:
     package = re.search(r'^\[package\][^\[]*?^name\s*=\s*"([^"]+)"', manifest, re.M | re.S)
     print(f"## {package.group(1) if package else crate.name} ({root.relative_to(crate)})")
     for prefix, order in levels:
-        up, cycles, suggested = check_level(src, prefix, order, verbose)
+        up, cycles, suggested = check_level(src, prefix, order)
         where = "::".join(prefix) or "crate"
         lib = sum(1 for sites in up.values() for s in sites if not s[2])
         test = sum(1 for sites in up.values() for s in sites if s[2])

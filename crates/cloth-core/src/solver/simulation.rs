@@ -913,7 +913,6 @@ impl Simulation {
             support: &mut ws.support,
             par: self.settings.parallelism(),
         };
-        end.support.fill(Vec3::zeros());
         if let Some(contacts) = &mut self.contacts {
             let start = Instant::now();
             stats.contacts = contacts.particles.active.iter().filter(|c| c.live).count();
@@ -923,6 +922,9 @@ impl Simulation {
             stats.crossings = counts.crossings;
             stats.feature_corrections = counts.features;
             stats.contact_seconds = start.elapsed().as_secs_f64();
+        } else if self.self_contacts.is_some() {
+            // No body holds anything; with bodies, their passes write all of it.
+            end.support.fill(Vec3::zeros());
         }
         let sc = self.self_contacts.as_mut()?;
         let budget = (!unbounded).then(|| IMPACTS_PER_PARTICLE * self.x.len());
