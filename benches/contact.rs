@@ -10,8 +10,8 @@
 //!   release passes and the end-of-step sweep included. Target: 25 ms median on 2 cores.
 
 use cloth::collide::{Bodies, Body, TriSurface};
-use cloth::scenes::SphereDrop;
 use cloth::{math::Vec3, Collider, Proximity};
+use cloth_fixtures::SphereDrop;
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::prelude::*;
 use std::hint::black_box;

@@ -7,13 +7,15 @@
 //! SCENE is one of sphere, table, turning, corner, plate.
 
 use cloth::formats::obj::write_cloth_obj;
-use cloth::scenes::{CubeCorner, FallingPlate, Scene, SceneError, SphereDrop, Tablecloth, TurningSphere};
 use cloth::{RestCriteria, StopReason, StrainReport};
+use cloth_fixtures::{
+    ContactScene, ContactSceneError, CubeCorner, FallingPlate, SphereDrop, Tablecloth, TurningSphere,
+};
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::time::Instant;
 
-fn build(name: &str, n: Option<usize>) -> Result<(Scene, f64), SceneError> {
+fn build(name: &str, n: Option<usize>) -> Result<(ContactScene, f64), ContactSceneError> {
     Ok(match name {
         "sphere" => {
             let mut s = SphereDrop::default();

@@ -5,7 +5,7 @@
 //!     cargo run --release --example self_collision -- fold|stack|throw [STEPS] [OUT_DIR]
 
 use cloth::formats::obj::write_cloth_obj;
-use cloth::scenes::{FoldingStrip, Scene, SheetOntoSheet, StackedSheets};
+use cloth_fixtures::{ContactScene, FoldingStrip, SheetOntoSheet, StackedSheets};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -14,7 +14,7 @@ fn main() {
     let name = args.first().map(String::as_str).unwrap_or("fold");
     let steps: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(300);
     let out = PathBuf::from(args.get(2).map(String::as_str).unwrap_or("target/self_collision"));
-    let scene: Scene = match name {
+    let scene: ContactScene = match name {
         "fold" => FoldingStrip::default().build(),
         "stack" => StackedSheets::default().build(),
         "throw" => SheetOntoSheet::default().build(),

@@ -11,7 +11,7 @@ To compare two builds on the shipped scenes:
     for s in assets/scenes/*.toml; do
         BIN run "$s" --out OUT/$(basename "$s" .toml) --force --quiet
     done
-    BIN drape assets/patterns/garmentcode --body assets/garmentcode/bodies/mean_all.obj \\
+    BIN drape assets/garmentcode/patterns --body assets/garmentcode/bodies/mean_all.obj \\
         --body-up-axis y --out OUT/drape
     python3 scripts/compare_outputs.py OUT_BEFORE OUT_AFTER
 

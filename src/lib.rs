@@ -16,5 +16,4 @@ pub mod scene_file;
 pub mod output;
 pub mod run_folder;
 pub mod drape;
-pub mod scenes;
 pub mod bench;

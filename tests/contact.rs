@@ -2,14 +2,16 @@
 //! for particles inside a body, plus friction against Coulomb's law and tunnelling.
 
 use cloth::collide::Bodies;
-use cloth::scenes::{CubeCorner, FallingPlate, Scene, SphereDrop, Tablecloth, TiltedPlane, TurningSphere};
 use cloth::{math::Vec3, RestCriteria, Simulation, StopReason};
+use cloth_fixtures::{
+    ContactScene, CubeCorner, FallingPlate, SphereDrop, Tablecloth, TiltedPlane, TurningSphere,
+};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
 /// Steps `scene` until at rest or `max_steps`, asserting after every step that no particle
 /// is deeper inside a body than a tenth of the contact thickness.
-fn run_checked(scene: &mut Scene, max_steps: u64, thickness: f64) -> StopReason {
+fn run_checked(scene: &mut ContactScene, max_steps: u64, thickness: f64) -> StopReason {
     let criteria = RestCriteria {
         max_time_step: None,
         tolerance: 1e-5,
@@ -33,7 +35,7 @@ fn run_checked(scene: &mut Scene, max_steps: u64, thickness: f64) -> StopReason 
 /// As [`run_checked`], but every linear solve to the solver's own tolerance: `run_to_rest`
 /// also stops a solve at a velocity error below what the rest test sees, which is not
 /// symmetric.
-fn run_checked_fully_solved(scene: &mut Scene, max_steps: u64, thickness: f64) -> StopReason {
+fn run_checked_fully_solved(scene: &mut ContactScene, max_steps: u64, thickness: f64) -> StopReason {
     let bodies = scene.bodies.clone();
     let mut worst = Depth::default();
     let reason = step_to_rest(scene, max_steps, |scene, step| {
@@ -45,7 +47,11 @@ fn run_checked_fully_solved(scene: &mut Scene, max_steps: u64, thickness: f64) -
 
 /// Full steps (see [`run_checked_fully_solved`]) until every particle moves less than
 /// 10 um per step for 10 steps, or `max_steps`; `observe` sees the scene after each step.
-fn step_to_rest(scene: &mut Scene, max_steps: u64, mut observe: impl FnMut(&Scene, u64)) -> StopReason {
+fn step_to_rest(
+    scene: &mut ContactScene,
+    max_steps: u64,
+    mut observe: impl FnMut(&ContactScene, u64),
+) -> StopReason {
     let mut calm = 0;
     for _ in 0..max_steps {
         let stats = scene.simulation.step().expect("the run does not fail");
@@ -213,7 +219,7 @@ fn sheet_on_a_turning_sphere_turns_with_it() {
 
 /// Distance of the origin below the plane of the cloth triangle straight above it
 /// (negative: the origin is above the cloth, through it).
-fn cloth_height_over_origin(scene: &Scene) -> Option<f64> {
+fn cloth_height_over_origin(scene: &ContactScene) -> Option<f64> {
     let x = scene.simulation.positions();
     scene.simulation.mesh().triangles().iter().find_map(|t| {
         let [a, b, c] = t.map(|i| x[i]);
@@ -327,7 +333,7 @@ fn a_sheet_held_by_friction_slides_freely_once_the_friction_is_let_go() {
         ..TiltedPlane::default()
     };
     let mut scene = setup.build().unwrap();
-    let run = |scene: &mut Scene, seconds: f64| {
+    let run = |scene: &mut ContactScene, seconds: f64| {
         let sim = &mut scene.simulation;
         let start: Vec3 = sim.positions().iter().sum::<Vec3>();
         let criteria = RestCriteria {
@@ -401,8 +407,8 @@ fn friction_stops_a_sliding_sheet_as_coulomb_says() {
 #[test]
 fn a_dragged_sheet_pulls_back_with_coulombs_friction() {
     use cloth::collide::{Body, TriSurface};
-    use cloth::scenes::scene_fabric;
     use cloth::{GridBuilder, Pin, SimulationBuilder};
+    use cloth_fixtures::scene_fabric;
     let (mu, g, thickness, speed, h) = (0.5, 9.81, 0.003, 0.1, 1.0 / 120.0);
     let plate = TriSurface::cuboid(Vec3::new(2.0, 2.0, 0.05)).unwrap();
     let pose = nalgebra::Isometry3::translation(0.0, 0.0, -0.05);
@@ -429,7 +435,7 @@ fn a_dragged_sheet_pulls_back_with_coulombs_friction() {
     let builder = SimulationBuilder::new(mesh, scene_fabric().with_drag(0.0))
         .time_step(h)
         .pins(pins);
-    let mut scene = Scene::new(body, builder).unwrap();
+    let mut scene = ContactScene::new(body, builder).unwrap();
     let sim = &mut scene.simulation;
     let dragged: f64 = sim.masses()[n..].iter().sum();
     let mut pulls = Vec::new();

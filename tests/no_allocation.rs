@@ -82,7 +82,7 @@ fn steps_do_not_allocate_alone_or_with_layers_in_contact() {
 /// than any step before, a handful of times in a run, never once a step. (Run from the
 /// test above: tests on parallel threads would count each other's allocations.)
 fn steps_with_layers_in_contact_do_not_allocate() {
-    let mut scene = cloth::scenes::StackedSheets {
+    let mut scene = cloth_fixtures::StackedSheets {
         particles_per_side: 15,
         ..Default::default()
     }

@@ -4,11 +4,11 @@
 
 mod common;
 
-use cloth::scenes::{FoldingStrip, Scene, SheetOntoSheet, StackedSheets};
 use cloth::{
     math::Vec3, ClothMesh, Fabric, GridBuilder, Pin, SelfCollision, Simulation, SimulationBuilder,
     SolverSettings,
 };
+use cloth_fixtures::{ContactScene, FoldingStrip, SheetOntoSheet, StackedSheets};
 
 /// Steps `sim` `steps` times, calling `check` after every step (every step is a frame).
 fn run(sim: &mut Simulation, steps: u64, mut check: impl FnMut(&Simulation)) {
@@ -19,7 +19,7 @@ fn run(sim: &mut Simulation, steps: u64, mut check: impl FnMut(&Simulation)) {
     }
 }
 
-fn without_self_collision(mut scene: Scene) -> Simulation {
+fn without_self_collision(mut scene: ContactScene) -> Simulation {
     let settings = SolverSettings {
         self_collision: SelfCollision::off(),
         ..scene.simulation.settings().clone()
@@ -29,7 +29,7 @@ fn without_self_collision(mut scene: Scene) -> Simulation {
 }
 
 /// The highest intersection count over a run of `steps` without self-collision.
-fn intersections_without(scene: Scene, steps: u64) -> usize {
+fn intersections_without(scene: ContactScene, steps: u64) -> usize {
     let mut sim = without_self_collision(scene);
     let mut most = 0;
     run(&mut sim, steps, |sim| {

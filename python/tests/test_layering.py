@@ -21,6 +21,7 @@ BOTTOM_UP = [
     ".",
     "crates/cloth-formats",
     "crates/cloth-render",
+    "crates/cloth-fixtures",
     "crates/cloth-core",
     "crates/cloth-collide",
     "crates/cloth-garment",

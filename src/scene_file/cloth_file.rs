@@ -2,6 +2,8 @@
 //! a file without them must be flat and is its own rest shape.
 
 use cloth_core::{math::Vec3, ClothMesh};
+use cloth_formats::obj::{fan, ObjFile};
+use cloth_formats::FormatError;
 use nalgebra::{Isometry3, Point3, Vector2};
 use std::path::Path;
 
@@ -11,19 +13,25 @@ const FLAT_TOLERANCE: f64 = 1e-6;
 
 /// Reads `path` (positions times `scale` then placed by `placement`, texture coordinates
 /// times `uv_scale`, both to metres). Particles are the file's vertices in the file's order, so
-/// pins and arrays can name them by their numbers (tobj renumbers vertices in the order
-/// faces use them, which is why the file is read here). Polygons are fanned into
-/// triangles. Errors say what is wrong and on which line; the caller adds the file.
+/// pins and arrays can name them by their numbers. Polygons are fanned into triangles.
+/// Errors say what is wrong and on which line; the caller adds the file.
 pub fn read_cloth_obj(
     path: &Path,
     scale: f64,
     uv_scale: f64,
     placement: &Isometry3<f64>,
 ) -> Result<ClothMesh, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
-    let obj = parse_obj(&text)?;
+    let obj = ObjFile::read(path).map_err(|e| match e {
+        FormatError::Io { source, .. } => source.to_string(),
+        FormatError::Parse {
+            line: Some(line),
+            message,
+            ..
+        } => format!("line {line}: {message}"),
+        other => other.to_string(),
+    })?;
     // The rest shape of a flat file is its own, wherever it is placed.
-    let unplaced: Vec<Vec3> = obj.vertices.iter().map(|p| scale * p).collect();
+    let unplaced: Vec<Vec3> = obj.positions.iter().map(|p| scale * p).collect();
     let positions: Vec<Vec3> = unplaced
         .iter()
         .map(|p| (placement * Point3::from(*p)).coords)
@@ -31,33 +39,31 @@ pub fn read_cloth_obj(
     if obj.faces.is_empty() {
         return Err("no faces".into());
     }
-    // Every particle must be part of the cloth; tobj dropped such vertices silently.
-    let mut used = vec![false; obj.vertices.len()];
+    // Every particle must be part of the cloth.
+    let mut used = vec![false; obj.positions.len()];
     obj.faces
         .iter()
-        .flat_map(|(_, f)| &f.0)
+        .flat_map(|f| &f.vertices)
         .for_each(|&i| used[i] = true);
     if let Some(k) = used.iter().position(|u| !u) {
         return Err(format!(
             "line {}: vertex {} is used by no face (a cloth is made of its faces' vertices)",
-            obj.vertex_lines[k],
+            obj.position_lines[k],
             k + 1
         ));
     }
-    let with_uv = obj.faces[0].1 .1.is_some();
+    let with_uv = obj.faces[0].texcoords.is_some();
     let (mut triangles, mut corner_uv) = (Vec::new(), Vec::new());
-    for (line, face) in &obj.faces {
-        let (v, t) = (&face.0, face.1.as_ref());
-        if t.is_some() != with_uv {
+    for face in &obj.faces {
+        if face.texcoords.is_some() != with_uv {
             return Err(format!(
-                "line {line}: some faces have texture coordinates (vt) and some do not"
+                "line {}: some faces have texture coordinates (vt) and some do not",
+                face.line
             ));
         }
-        for k in 1..v.len() - 1 {
-            triangles.push([v[0], v[k], v[k + 1]]);
-            if let Some(t) = t {
-                corner_uv.push([t[0], t[k], t[k + 1]].map(|i| uv_scale * obj.texcoords[i]));
-            }
+        triangles.extend(fan(&face.vertices));
+        if let Some(t) = &face.texcoords {
+            corner_uv.extend(fan(t).map(|c| c.map(|i| uv_scale * Vector2::from(obj.texcoords[i]))));
         }
     }
     if with_uv {
@@ -71,103 +77,6 @@ pub fn read_cloth_obj(
     }
     let uv = flat_coordinates(&unplaced)?;
     ClothMesh::new(positions, uv, triangles).map_err(|e| e.to_string())
-}
-
-/// A face: its vertices and, if given, its texture coordinates (0-based).
-type Face = (Vec<usize>, Option<Vec<usize>>);
-
-struct ObjData {
-    vertices: Vec<Vec3>,
-    /// The line of each vertex.
-    vertex_lines: Vec<usize>,
-    texcoords: Vec<Vector2<f64>>,
-    first_texcoord_line: Option<usize>,
-    /// Each face with its line number.
-    faces: Vec<(usize, Face)>,
-}
-
-/// The geometry statements of an OBJ file (`v`, `vt`, `f`); the rest (normals, groups,
-/// materials, smoothing) does not shape a cloth and is skipped.
-fn parse_obj(text: &str) -> Result<ObjData, String> {
-    let mut obj = ObjData {
-        vertices: Vec::new(),
-        vertex_lines: Vec::new(),
-        texcoords: Vec::new(),
-        first_texcoord_line: None,
-        faces: Vec::new(),
-    };
-    for (n, raw) in text.lines().enumerate() {
-        let line = n + 1;
-        let content = raw.split('#').next().unwrap_or("");
-        let mut words = content.split_whitespace();
-        let numbers = |words: std::str::SplitWhitespace<'_>, count: usize, what: &str| {
-            let values: Vec<f64> = words
-                .take(count)
-                .map(|w| w.parse::<f64>().ok().filter(|x| x.is_finite()))
-                .collect::<Option<_>>()
-                .ok_or_else(|| format!("line {line}: {what} needs {count} finite numbers"))?;
-            if values.len() < count {
-                return Err(format!("line {line}: {what} needs {count} finite numbers"));
-            }
-            Ok(values)
-        };
-        match words.next() {
-            Some("v") => {
-                let p = numbers(words, 3, "a vertex (v)")?;
-                obj.vertices.push(Vec3::new(p[0], p[1], p[2]));
-                obj.vertex_lines.push(line);
-            }
-            Some("vt") => {
-                let t = numbers(words, 2, "a texture coordinate (vt)")?;
-                obj.texcoords.push(Vector2::new(t[0], t[1]));
-                obj.first_texcoord_line.get_or_insert(line);
-            }
-            Some("f") => {
-                let (mut v, mut t) = (Vec::new(), Vec::new());
-                for corner in words {
-                    let mut parts = corner.split('/');
-                    let index = |part: Option<&str>,
-                                 count: usize,
-                                 what: &str|
-                     -> Result<Option<usize>, String> {
-                        let Some(part) = part.filter(|p| !p.is_empty()) else {
-                            return Ok(None);
-                        };
-                        let i: i64 = part
-                            .parse()
-                            .map_err(|_| format!("line {line}: '{corner}' is not a face corner"))?;
-                        // OBJ numbers from 1; negative numbers count back from the last.
-                        let resolved = if i > 0 { i - 1 } else { count as i64 + i };
-                        if i == 0 || resolved < 0 || resolved >= count as i64 {
-                            return Err(format!(
-                                "line {line}: the face names {what} {i}, which does not exist ({count} so far)"
-                            ));
-                        }
-                        Ok(Some(resolved as usize))
-                    };
-                    let vi = index(parts.next(), obj.vertices.len(), "vertex")?
-                        .ok_or_else(|| format!("line {line}: '{corner}' names no vertex"))?;
-                    v.push(vi);
-                    t.push(index(parts.next(), obj.texcoords.len(), "texture coordinate")?);
-                }
-                if v.len() < 3 {
-                    return Err(format!("line {line}: a face needs at least 3 corners"));
-                }
-                let t = match t.iter().all(Option::is_some) {
-                    true => Some(t.into_iter().flatten().collect()),
-                    false if t.iter().all(Option::is_none) => None,
-                    false => {
-                        return Err(format!(
-                            "line {line}: some corners of the face have texture coordinates and some do not"
-                        ))
-                    }
-                };
-                obj.faces.push((line, (v, t)));
-            }
-            _ => {}
-        }
-    }
-    Ok(obj)
 }
 
 /// Coordinates in the plane of a flat point set, u along the plane's x direction (or y's

@@ -3,25 +3,19 @@
 
 use std::path::PathBuf;
 
+use cloth_formats::FormatError;
 use thiserror::Error;
 
 /// A rigid-body surface that cannot be built or read: one that could have no inside.
 /// Imperfect meshes load with [`SurfaceDefect`](super::SurfaceDefect)s instead.
 ///
-/// Vertex and triangle indices refer to the mesh as given; for a file, as the reader
-/// numbered them (STL has three vertices per facet).
+/// Vertex and triangle indices refer to the mesh as given; for a file, as the file numbers
+/// them from 0 (STL has three vertices per facet).
 #[derive(Debug, Error)]
 pub enum SurfaceError {
-    #[error("cannot read {}: {source}", path.display())]
-    Io { path: PathBuf, source: std::io::Error },
-    #[error("{}{}: cannot parse: {message}", path.display(), at_line(*line))]
-    Parse {
-        path: PathBuf,
-        line: Option<usize>,
-        message: String,
-    },
-    #[error("{}: unknown mesh format; use a .obj, .stl, .ply, .gltf or .glb file", path.display())]
-    UnknownFormat { path: PathBuf },
+    /// The file cannot be read as a mesh: it names the file, and the line or element.
+    #[error(transparent)]
+    Format(#[from] FormatError),
     #[error("{}: {source}", path.display())]
     InFile {
         path: PathBuf,
@@ -63,15 +57,11 @@ impl SurfaceError {
     /// name their file are returned unchanged.
     pub(super) fn in_file(self, path: &std::path::Path) -> Self {
         match self {
-            Self::Io { .. } | Self::Parse { .. } | Self::UnknownFormat { .. } | Self::InFile { .. } => self,
+            Self::Format(_) | Self::InFile { .. } => self,
             other => Self::InFile {
                 path: path.to_path_buf(),
                 source: Box::new(other),
             },
         }
     }
-}
-
-fn at_line(line: Option<usize>) -> String {
-    line.map(|l| format!(", line {l}")).unwrap_or_default()
 }

@@ -14,11 +14,7 @@ mod winding;
 mod overlap;
 mod repair;
 mod primitives;
-mod io;
-mod obj;
-mod stl;
-mod ply;
-mod gltf;
+mod read;
 
 use cloth_core::math::Vec3;
 
@@ -26,7 +22,6 @@ pub use defects::SurfaceDefect;
 pub use error::SurfaceError;
 pub use features::SharpFeature;
 pub use options::SurfaceOptions;
-pub use ply::ply_number;
 pub use winding::WindingTree;
 
 /// A body's triangle mesh, its triangles turned to face outward wherever their part can be

@@ -1,11 +1,12 @@
 //! Meshes from files, to draw: OBJ and PLY, with the colours they carry.
 
-mod obj;
-mod ply;
-
 use super::error::RenderError;
+use super::strain_colours::strain_colour;
 use super::{MeshColours, RenderMesh, NEUTRAL_GREY};
 use cloth_core::math::Vec3;
+use cloth_formats::obj::ObjFile;
+use cloth_formats::ply::PlyMesh;
+use cloth_formats::MeshFormat;
 use std::path::Path;
 
 /// Where a read mesh's colours came from.
@@ -54,48 +55,56 @@ impl LoadedMesh {
     }
 }
 
-/// Reads an OBJ (all objects merged, polygons triangulated, vertex colours if any) or a
-/// PLY (ASCII or binary; polygons as fans; a `strain` property preferred to
-/// red/green/blue), chosen by the extension.
+/// Reads an OBJ (all objects merged, polygons as fans, vertex colours if any) or a PLY
+/// (ASCII or binary; polygons as fans; a `strain` property preferred to red/green/blue),
+/// chosen by the extension, with the file's numbering.
 pub fn read_render_mesh(path: &Path) -> Result<LoadedMesh, RenderError> {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let loaded = match extension.as_deref() {
-        Some("obj") => obj::read(path)?,
-        Some("ply") => ply::read(path)?,
+    let loaded = match MeshFormat::of(path) {
+        Ok(MeshFormat::Obj) => from_obj(ObjFile::read(path)?),
+        Ok(MeshFormat::Ply) => from_ply(PlyMesh::read(path)?),
         _ => {
             return Err(RenderError::UnknownFormat {
                 path: path.to_path_buf(),
             })
         }
     };
-    check(path, &loaded.mesh)?;
-    Ok(loaded)
-}
-
-/// What both readers promise: finite positions, indices in range, at least one triangle.
-fn check(path: &Path, mesh: &RenderMesh) -> Result<(), RenderError> {
-    if let Some((index, p)) = mesh
-        .positions
-        .iter()
-        .enumerate()
-        .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
-    {
-        return Err(RenderError::BadElement {
-            path: path.to_path_buf(),
-            element: "vertex",
-            index,
-            message: format!("non-finite coordinate in ({}, {}, {})", p.x, p.y, p.z),
-        });
-    }
-    if mesh.triangles.is_empty() {
+    if loaded.mesh.triangles.is_empty() {
         return Err(RenderError::NoTriangles {
             path: path.to_path_buf(),
         });
     }
-    Ok(())
+    Ok(loaded)
+}
+
+/// Vertex colours (0 to 1) where the file gives them, grey for the vertices it does not.
+fn from_obj(obj: ObjFile) -> LoadedMesh {
+    let triangles = obj.triangles().collect();
+    let (colours, colouring) = if obj.colours.iter().any(Option::is_some) {
+        let colours = obj
+            .colours
+            .iter()
+            .map(|c| {
+                c.map_or(NEUTRAL_GREY, |c| {
+                    c.map(|k| (k.clamp(0.0, 1.0) * 255.0).round() as u8)
+                })
+            })
+            .collect();
+        (colours, Colouring::FromFile)
+    } else {
+        (Vec::new(), Colouring::Plain)
+    };
+    LoadedMesh::new(obj.positions, triangles, colours, colouring)
+}
+
+/// Strain on the output's scale if the file has it, else its colours if any.
+fn from_ply(ply: PlyMesh) -> LoadedMesh {
+    let triangles = ply.triangles().map(|t| t.map(|i| i as usize)).collect();
+    let (colours, colouring) = match (ply.strain, ply.colours) {
+        (Some(strain), _) => (strain.into_iter().map(strain_colour).collect(), Colouring::Strain),
+        (None, Some(colours)) => (colours, Colouring::FromFile),
+        (None, None) => (Vec::new(), Colouring::Plain),
+    };
+    LoadedMesh::new(ply.positions, triangles, colours, colouring)
 }
 
 #[cfg(test)]
@@ -209,7 +218,8 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar int vert
         let missing = std::env::temp_dir().join("cloth-render-surely-not-here.ply");
         let e = read_render_mesh(&missing).unwrap_err();
         assert!(
-            matches!(e, RenderError::Io { .. }) && e.to_string().contains("surely-not-here"),
+            matches!(e, RenderError::Format(cloth_formats::FormatError::Io { .. }))
+                && e.to_string().contains("surely-not-here"),
             "{e}"
         );
         let e = read_render_mesh(Path::new("mesh.stl")).unwrap_err();

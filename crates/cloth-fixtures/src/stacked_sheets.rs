@@ -1,4 +1,5 @@
-use super::{scene_fabric, two_sheets, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::{scene_fabric, two_sheets};
 use cloth_collide::{Body, TriSurface};
 use cloth_core::{math::Vec3, SimulationBuilder};
 
@@ -39,7 +40,7 @@ impl Default for StackedSheets {
 
 impl StackedSheets {
     /// Particles of the lower sheet come first, then those of the upper.
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let sphere = TriSurface::sphere(self.radius, 48, 24)?;
         let body = Body::new("sphere", sphere)
             .with_thickness(self.thickness)?
@@ -51,7 +52,7 @@ impl StackedSheets {
             Vec3::new(0.0, 0.0, self.gap),
             self.turn,
         )?;
-        Scene::new(
+        ContactScene::new(
             body,
             SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
         )

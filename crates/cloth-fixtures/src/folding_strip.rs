@@ -1,4 +1,5 @@
-use super::{scene_fabric, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::scene_fabric;
 use cloth_collide::{Body, TriSurface};
 use cloth_core::{math::Vec3, GridBuilder, SimulationBuilder};
 use nalgebra::Isometry3;
@@ -38,7 +39,7 @@ impl Default for FoldingStrip {
 }
 
 impl FoldingStrip {
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let floor = Body::new("floor", TriSurface::cuboid(Vec3::new(1.5, 1.5, 0.05))?)
             .with_pose(Isometry3::translation(0.0, 0.0, -0.05))?
             .with_thickness(self.thickness)?
@@ -56,7 +57,7 @@ impl FoldingStrip {
             .origin(origin)
             .axes(Vec3::x(), along)
             .build()?;
-        Scene::new(
+        ContactScene::new(
             floor,
             SimulationBuilder::new(mesh, scene_fabric()).time_step(self.time_step),
         )

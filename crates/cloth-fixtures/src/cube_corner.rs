@@ -1,4 +1,5 @@
-use super::{horizontal_sheet, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::horizontal_sheet;
 use cloth_collide::{Body, TriSurface};
 use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
@@ -44,7 +45,7 @@ impl CubeCorner {
         Isometry3::from_parts(Translation3::from(-corner), up)
     }
 
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let h = 0.5 * self.cube_size;
         let cube = TriSurface::cuboid(Vec3::new(h, h, h))?;
         let body = Body::new("cube", cube)
@@ -56,6 +57,6 @@ impl CubeCorner {
         let cell = self.sheet_size / (self.particles_per_side - 1) as f64;
         let centre = Vec3::new(cell / 3.0, cell / 5.0, self.thickness + self.drop_height);
         let sheet = horizontal_sheet(self.particles_per_side, self.sheet_size, centre, self.time_step)?;
-        Scene::new(body, sheet)
+        ContactScene::new(body, sheet)
     }
 }

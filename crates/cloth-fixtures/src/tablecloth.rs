@@ -1,4 +1,5 @@
-use super::{horizontal_sheet, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::horizontal_sheet;
 use cloth_collide::{Body, TriSurface};
 use cloth_core::math::Vec3;
 
@@ -33,7 +34,7 @@ impl Default for Tablecloth {
 }
 
 impl Tablecloth {
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let half = 0.5 * self.table_size;
         let table = TriSurface::table(
             Vec3::new(half, half, 0.5 * self.top_thickness),
@@ -46,6 +47,6 @@ impl Tablecloth {
             .with_friction(self.friction)?;
         let centre = Vec3::new(0.0, 0.0, self.table_height + self.thickness + self.drop_height);
         let sheet = horizontal_sheet(self.particles_per_side, self.cloth_size, centre, self.time_step)?;
-        Scene::new(body, sheet)
+        ContactScene::new(body, sheet)
     }
 }

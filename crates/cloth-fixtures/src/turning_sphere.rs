@@ -1,4 +1,5 @@
-use super::{horizontal_sheet, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::horizontal_sheet;
 use cloth_collide::{Body, Motion, TriSurface};
 use cloth_core::math::Vec3;
 use nalgebra::{Isometry3, Unit};
@@ -32,7 +33,7 @@ impl Default for TurningSphere {
 }
 
 impl TurningSphere {
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let sphere = TriSurface::sphere(self.radius, 64, 32)?;
         let body = Body::new("turning sphere", sphere)
             .with_motion(Motion::Spin {
@@ -45,6 +46,6 @@ impl TurningSphere {
             .with_friction(self.friction)?;
         let top = Vec3::new(0.0, 0.0, self.radius + self.thickness);
         let sheet = horizontal_sheet(self.particles_per_side, self.sheet_size, top, self.time_step)?;
-        Scene::new(body, sheet)
+        ContactScene::new(body, sheet)
     }
 }

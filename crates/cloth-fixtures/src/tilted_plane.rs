@@ -1,4 +1,5 @@
-use super::{scene_fabric, square_sheet, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::{scene_fabric, square_sheet};
 use cloth_collide::{Body, TriSurface};
 use cloth_core::{math::Vec3, SimulationBuilder};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
@@ -41,7 +42,7 @@ impl TiltedPlane {
         UnitQuaternion::from_axis_angle(&Vec3::x_axis(), self.angle)
     }
 
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         // A 4 m plate 10 cm thick whose top face passes through the origin.
         let plate = TriSurface::cuboid(Vec3::new(2.0, 2.0, 0.05))?;
         let pose = Isometry3::from_parts(Translation3::from(-0.05 * self.normal()), self.tilt());
@@ -57,7 +58,7 @@ impl TiltedPlane {
             u,
             v,
         )?;
-        Scene::new(
+        ContactScene::new(
             body,
             SimulationBuilder::new(mesh, scene_fabric().with_drag(0.0)).time_step(self.time_step),
         )

@@ -1,4 +1,5 @@
-use super::{horizontal_sheet, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::horizontal_sheet;
 use cloth_collide::{Body, TriSurface};
 use cloth_core::math::Vec3;
 
@@ -33,7 +34,7 @@ impl Default for FallingPlate {
 }
 
 impl FallingPlate {
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let half = 0.5 * self.plate_size;
         let plate = TriSurface::cuboid(Vec3::new(half, half, 0.5 * self.plate_thickness))?;
         let pose = nalgebra::Isometry3::translation(0.0, 0.0, -0.5 * self.plate_thickness);
@@ -50,6 +51,6 @@ impl FallingPlate {
             );
             n * n
         ]);
-        Scene::new(body, sheet)
+        ContactScene::new(body, sheet)
     }
 }

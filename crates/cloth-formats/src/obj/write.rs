@@ -1,4 +1,5 @@
-//! OBJ output of a cloth, to look at in any viewer, written atomically.
+//! Writing OBJ: a cloth (with its material coordinates when asked) written atomically, and
+//! named triangle surfaces, one object each, to any writer.
 
 use crate::atomic::write_atomically;
 use cloth_core::{math::Vec3, ClothMesh};
@@ -47,6 +48,46 @@ pub fn write_cloth_obj_with_uv(path: &Path, mesh: &ClothMesh, positions: &[Vec3]
 fn write_vertices(out: &mut dyn Write, positions: &[Vec3]) -> std::io::Result<()> {
     for p in positions {
         writeln!(out, "v {} {} {}", p.x, p.y, p.z)?;
+    }
+    Ok(())
+}
+
+/// One object of an OBJ file: a triangle surface, named or not.
+#[derive(Debug, Clone, Copy)]
+pub struct ObjObject<'a> {
+    pub name: Option<&'a str>,
+    pub positions: &'a [Vec3],
+    pub triangles: &'a [[u32; 3]],
+}
+
+/// Writes `comments` (one `#` line each), then each object (`o name` when named, a comment
+/// with its counts, its `v` and `f` lines; OBJ numbers vertices across objects, from 1).
+/// Positions are the shortest decimals that read back to the same f64, so a file read back
+/// is the surface exactly.
+pub fn write_objects(
+    out: &mut dyn Write,
+    comments: &[String],
+    objects: &[ObjObject<'_>],
+) -> std::io::Result<()> {
+    for c in comments {
+        writeln!(out, "# {c}")?;
+    }
+    let mut offset = 1;
+    for object in objects {
+        if let Some(name) = object.name {
+            writeln!(out, "o {name}")?;
+        }
+        writeln!(
+            out,
+            "# {} vertices, {} triangles",
+            object.positions.len(),
+            object.triangles.len()
+        )?;
+        write_vertices(out, object.positions)?;
+        for [a, b, c] in object.triangles {
+            writeln!(out, "f {} {} {}", a + offset, b + offset, c + offset)?;
+        }
+        offset += object.positions.len() as u32;
     }
     Ok(())
 }

@@ -1,4 +1,5 @@
-use super::{scene_fabric, two_sheets, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::{scene_fabric, two_sheets};
 use cloth_collide::{Body, TriSurface};
 use cloth_core::{math::Vec3, SimulationBuilder};
 use nalgebra::Isometry3;
@@ -41,7 +42,7 @@ impl Default for SheetOntoSheet {
 
 impl SheetOntoSheet {
     /// Particles of the lying sheet come first, then those of the falling one.
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let half = 0.5 * self.block_size;
         let block = Body::new("block", TriSurface::cuboid(Vec3::new(half, half, 0.05))?)
             .with_pose(Isometry3::translation(0.0, 0.0, -0.05))?
@@ -63,7 +64,7 @@ impl SheetOntoSheet {
                 }
             })
             .collect();
-        Scene::new(
+        ContactScene::new(
             block,
             SimulationBuilder::new(mesh, scene_fabric())
                 .time_step(self.time_step)

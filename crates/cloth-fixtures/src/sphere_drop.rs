@@ -1,4 +1,5 @@
-use super::{horizontal_sheet, Scene, SceneError};
+use crate::contact_scene::{ContactScene, ContactSceneError};
+use crate::sheets::horizontal_sheet;
 use cloth_collide::{Body, TriSurface};
 use cloth_core::math::Vec3;
 
@@ -35,13 +36,13 @@ impl Default for SphereDrop {
 }
 
 impl SphereDrop {
-    pub fn build(&self) -> Result<Scene, SceneError> {
+    pub fn build(&self) -> Result<ContactScene, ContactSceneError> {
         let sphere = TriSurface::sphere(self.radius, self.segments, self.rings)?;
         let body = Body::new("sphere", sphere)
             .with_thickness(self.thickness)?
             .with_friction(self.friction)?;
         let top = Vec3::new(0.0, 0.0, self.radius + self.thickness + self.drop_height);
         let sheet = horizontal_sheet(self.particles_per_side, self.sheet_size, top, self.time_step)?;
-        Scene::new(body, sheet)
+        ContactScene::new(body, sheet)
     }
 }
