@@ -3,13 +3,13 @@
 //! `cloth run` would trip on.
 
 use super::cloth_file::read_cloth_obj;
+use super::error::{SceneErrorKind, SceneFileError};
 use super::frame::{placement, UpAxis};
-use super::records::{BodySpec, ClothSpec, FabricSpec, SceneFile};
+use super::records::{BodyShape, BodySpec, ClothSpec, FabricSpec, Placement, SceneFile};
 use super::warning::SceneWarning;
-use super::SceneFileError;
 use crate::presets::FabricLibrary;
 use crate::validation::{Cantilever, CusickTest};
-use cloth_collide::{Bodies, Body, TriSurface};
+use cloth_collide::{Bodies, Body, SurfaceOptions, TriSurface};
 use cloth_core::{math::Vec3, Fabric, GridBuilder, GridShape, Pin, SimulationBuilder};
 use cloth_garment::mannequin::Mannequin;
 use cloth_garment::{garmentcode, Garment, GarmentBuilder, Pattern};
@@ -53,15 +53,8 @@ impl SceneFile {
     /// Builds the cloth, fabrics and bodies. `file` names the scene in errors and `dir`
     /// is where its relative paths start.
     pub fn prepare(&self, file: &str, dir: &Path) -> Result<Prepared, SceneFileError> {
-        let invalid = |key: &str, reason: String| SceneFileError::Invalid {
-            file: file.into(),
-            key: key.into(),
-            reason,
-        };
-        let param = |source| SceneFileError::Param {
-            file: file.into(),
-            source,
-        };
+        let invalid = |key: &str, reason: String| SceneFileError::invalid(file, key, reason);
+        let param = |source| SceneFileError::new(file, None, SceneErrorKind::Param(source));
         self.solver_settings().validate().map_err(param)?;
         self.rest.validate().map_err(param)?;
         self.sewing.validate().map_err(param)?;
@@ -71,10 +64,7 @@ impl SceneFile {
             .map_err(|(key, reason)| invalid(key, reason))?;
         let library = FabricLibrary::builtin();
         let fabric = self.fabric.resolve(library).map_err(|e| match e {
-            Ok(source) => SceneFileError::Preset {
-                file: file.into(),
-                source,
-            },
+            Ok(source) => SceneFileError::new(file, Some("fabric"), SceneErrorKind::Preset(source)),
             Err(reason) => invalid("fabric", reason),
         })?;
         fabric.validate().map_err(param)?;
@@ -111,23 +101,29 @@ impl SceneFile {
                 let path = dir.join(pattern);
                 let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
                 let pattern = if is_json {
-                    garmentcode::from_path(&path, &garmentcode::ImportOptions::default())?
+                    garmentcode::from_path(&path, &garmentcode::ImportOptions::default())
                 } else {
-                    Pattern::from_toml_path(&path)?
-                };
+                    Pattern::from_toml_path(&path)
+                }
+                .map_err(|e| {
+                    SceneFileError::new(file, Some("cloth.garment.pattern"), SceneErrorKind::Pattern(e))
+                })?;
                 warnings.extend(pattern.gathers().into_iter().map(SceneWarning::Gather));
                 let mut garment = GarmentBuilder::new(pattern)
                     .edge_length(*edge_length)
                     .max_triangles(self.max_triangles)
                     .file(path.display().to_string())
-                    .build()?;
-                let fabrics =
-                    library
-                        .panel_fabrics(&garment, &fabric)
-                        .map_err(|source| SceneFileError::Preset {
-                            file: path.display().to_string(),
-                            source,
-                        })?;
+                    .build()
+                    .map_err(|e| {
+                        SceneFileError::new(file, Some("cloth.garment"), SceneErrorKind::Garment(e))
+                    })?;
+                let fabrics = library.panel_fabrics(&garment, &fabric).map_err(|source| {
+                    SceneFileError::new(
+                        &path.display().to_string(),
+                        Some("fabric"),
+                        SceneErrorKind::Preset(source),
+                    )
+                })?;
                 warnings.extend(
                     garment
                         .layer_overlapping(LAYER_GAP)
@@ -160,9 +156,8 @@ impl SceneFile {
                     .origin(Vec3::from(*origin))
                     .axes(Vec3::from(*u_axis), Vec3::from(*v_axis))
                     .build()
-                    .map_err(|source| SceneFileError::Mesh {
-                        file: file.into(),
-                        source,
+                    .map_err(|source| {
+                        SceneFileError::new(file, Some("cloth"), SceneErrorKind::Mesh(source))
                     })?;
                 let g = mesh.grid().expect("a grid builder makes a grid");
                 let mut builder = SimulationBuilder::new(mesh, fabric.clone());
@@ -310,13 +305,10 @@ impl FabricSpec {
         &self,
         library: &FabricLibrary,
     ) -> Result<Fabric, Result<crate::presets::PresetError, String>> {
-        match (&self.preset, &self.si, &self.kes) {
-            (Some(name), None, None) => library.fabric(name).map_err(Ok),
-            (None, Some(si), None) => Ok(si.clone()),
-            (None, None, Some(kes)) => kes.to_fabric().map(|c| c.fabric).map_err(|e| Err(e.to_string())),
-            _ => Err(Err(
-                "give exactly one of preset, [fabric.si] or [fabric.kes]".into()
-            )),
+        match self {
+            FabricSpec::Preset(name) => library.fabric(name).map_err(Ok),
+            FabricSpec::Si(si) => Ok(si.clone()),
+            FabricSpec::Kes(kes) => kes.to_fabric().map(|c| c.fabric).map_err(|e| Err(e.to_string())),
         }
     }
 }
@@ -333,99 +325,85 @@ impl BodySpec {
         cloth_edge: Option<f64>,
     ) -> Result<Vec<Body>, SceneFileError> {
         let key = key.to_string();
-        let invalid = |reason: String| SceneFileError::Invalid {
-            file: file.into(),
-            key: key.clone(),
-            reason,
-        };
-        let surface_error = |source| SceneFileError::Surface {
-            file: file.into(),
-            key: key.clone(),
-            source: Box::new(source),
-        };
-        let given = [
-            self.mannequin.is_some(),
-            self.file.is_some(),
-            self.sphere.is_some(),
-            self.cuboid.is_some(),
-            self.cylinder.is_some(),
-            self.table.is_some(),
-        ];
-        if given.iter().filter(|g| **g).count() != 1 {
-            return Err(invalid(
-                "give exactly one of mannequin, file, sphere, box, cylinder or table".into(),
-            ));
-        }
+        let surface_error =
+            |source| SceneFileError::new(file, Some(&key), SceneErrorKind::Surface(Box::new(source)));
         let named = |default: &str| self.name.clone().unwrap_or_else(|| default.to_string());
-        let surfaces: Vec<(String, TriSurface)> = if let Some(m) = &self.mannequin {
-            let mannequin = Mannequin::new(m).map_err(|source| SceneFileError::Mannequin {
-                file: file.into(),
-                key: format!("{key}.mannequin"),
-                source: Box::new(source),
-            })?;
-            mannequin
-                .surfaces()
-                .into_iter()
-                .map(|(part, s)| (format!("{} {part}", named("mannequin")), s.clone()))
-                .collect()
-        } else if let Some(path) = &self.file {
-            let path = dir.join(path);
-            let surface = TriSurface::read(&path, &self.surface_options()).map_err(surface_error)?;
-            vec![(named(&path.display().to_string()), surface)]
-        } else if let Some(sphere) = self.sphere {
-            vec![(
+        let surfaces: Vec<(String, TriSurface)> = match &self.shape {
+            BodyShape::Mannequin(m) => {
+                let mannequin = Mannequin::new(m).map_err(|source| {
+                    SceneFileError::new(
+                        file,
+                        Some(&format!("{key}.mannequin")),
+                        SceneErrorKind::Mannequin(Box::new(source)),
+                    )
+                })?;
+                mannequin
+                    .surfaces()
+                    .into_iter()
+                    .map(|(part, s)| (format!("{} {part}", named("mannequin")), s.clone()))
+                    .collect()
+            }
+            BodyShape::File(f) => {
+                let path = dir.join(&f.path);
+                let options = SurfaceOptions {
+                    scale: f.scale,
+                    ..SurfaceOptions::default()
+                };
+                let surface = TriSurface::read(&path, &options).map_err(surface_error)?;
+                vec![(named(&path.display().to_string()), surface)]
+            }
+            BodyShape::Sphere(sphere) => vec![(
                 named("sphere"),
                 TriSurface::icosphere(sphere.radius, 4).map_err(surface_error)?,
-            )]
-        } else if let Some(b) = self.cuboid {
-            let half = Vec3::from(b.size) / 2.0;
-            vec![(named("box"), TriSurface::cuboid(half).map_err(surface_error)?)]
-        } else if let Some(c) = self.cylinder {
-            let surface = TriSurface::cylinder(c.radius, 0.5 * c.height, 64).map_err(surface_error)?;
-            vec![(named("cylinder"), surface)]
-        } else if let Some(t) = self.table {
-            let half = Vec3::from(t.size) / 2.0;
-            let surface =
-                TriSurface::table(half, t.height, 0.5 * t.leg_width, t.leg_inset).map_err(surface_error)?;
-            vec![(named("table"), surface)]
-        } else {
-            unreachable!("exactly one shape was checked above")
+            )],
+            BodyShape::Box(b) => {
+                let half = Vec3::from(b.size) / 2.0;
+                vec![(named("box"), TriSurface::cuboid(half).map_err(surface_error)?)]
+            }
+            BodyShape::Cylinder(c) => {
+                let surface = TriSurface::cylinder(c.radius, 0.5 * c.height, 64).map_err(surface_error)?;
+                vec![(named("cylinder"), surface)]
+            }
+            BodyShape::Table(t) => {
+                let half = Vec3::from(t.size) / 2.0;
+                let surface = TriSurface::table(half, t.height, 0.5 * t.leg_width, t.leg_inset)
+                    .map_err(surface_error)?;
+                vec![(named("table"), surface)]
+            }
         };
-        let up = match (self.up_axis, &self.file) {
+        let Placement {
+            up_axis,
+            rotation,
+            position,
+        } = self.placement;
+        let up = match (up_axis, &self.shape) {
             (Some(up), _) => up,
-            (None, Some(path)) => UpAxis::of_file(path),
-            (None, None) => UpAxis::Z,
+            (None, BodyShape::File(f)) => UpAxis::of_file(&f.path),
+            (None, _) => UpAxis::Z,
         };
-        let pose = placement(up, self.rotation, self.position).map_err(|reason| SceneFileError::Invalid {
-            file: file.into(),
-            key: format!("{key}.rotation"),
-            reason,
-        })?;
-        let body_error = |source| SceneFileError::Body {
-            file: file.into(),
-            key: key.clone(),
-            source,
-        };
+        let pose = placement(up, rotation, position)
+            .map_err(|reason| SceneFileError::invalid(file, &format!("{key}.rotation"), reason))?;
+        let body_error = |source| SceneFileError::new(file, Some(&key), SceneErrorKind::Body(source));
         surfaces
             .into_iter()
             .map(|(name, surface)| {
                 let mut body = Body::new(name, surface).with_pose(pose).map_err(body_error)?;
-                if let Some(t) = self.thickness {
+                if let Some(t) = self.contact.thickness {
                     body = body.with_thickness(t).map_err(body_error)?;
                 }
-                if let Some(floor) = self.min_thickness {
+                if let Some(floor) = self.contact.min_thickness {
                     let Some(edge) = cloth_edge else {
-                        return Err(SceneFileError::Invalid {
-                            file: file.into(),
-                            key: format!("{key}.min_thickness"),
-                            reason: "a layer thinned to the cloth's edges needs a cloth whose edge length \
-                                     is known before it is built (a garment, a grid, a Cusick test)"
+                        return Err(SceneFileError::invalid(
+                            file,
+                            &format!("{key}.min_thickness"),
+                            "a layer thinned to the cloth's edges needs a cloth whose edge length \
+                             is known before it is built (a garment, a grid, a Cusick test)"
                                 .into(),
-                        });
+                        ));
                     };
                     body = body.with_thinned_layer(edge, floor).map_err(body_error)?;
                 }
-                if let Some(mu) = self.friction {
+                if let Some(mu) = self.contact.friction {
                     body = body.with_friction(mu).map_err(body_error)?;
                 }
                 Ok(body)

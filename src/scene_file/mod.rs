@@ -19,13 +19,16 @@ mod run;
 
 pub use build::{Prepared, PreparedCloth, SheetTest};
 pub use cloth_file::read_cloth_obj;
-pub use error::SceneFileError;
+pub use error::{SceneErrorKind, SceneFileError};
 pub use fit::Fit;
 pub use frame::{placement, UpAxis};
 pub use observer::RunObserver;
 pub use panel_report::PanelReport;
 pub(crate) use recorder::median;
-pub use records::{BodySpec, ClothSpec, FabricSpec, OutputSpec, SceneFile};
+pub use records::{
+    BodyShape, BodySpec, BoxSpec, ClothSpec, ContactSpec, CylinderSpec, FabricSpec, FileSpec, OutputSpec,
+    Placement, SceneFile, SphereSpec, TableSpec,
+};
 pub use report::{
     Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, TangleRecord,
 };
@@ -34,15 +37,15 @@ pub use strain_summary::StrainSummary;
 pub use verdict::{CLEAN, CLEAN_P99_STRAIN, REASONS, STRETCHED};
 pub use warning::SceneWarning;
 
+use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
 impl SceneFile {
     /// Reads and parses a scene file; unknown keys are refused, and syntax errors give the
     /// line and column.
     pub fn from_path(path: &Path) -> Result<(SceneFile, PathBuf), SceneFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneFileError::Io {
-            path: path.to_path_buf(),
-            source,
+        let text = std::fs::read_to_string(path).map_err(|source| {
+            SceneFileError::new(&path.display().to_string(), None, SceneErrorKind::Io(source))
         })?;
         let scene = Self::from_toml_str(&text, &path.display().to_string())?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -51,9 +54,14 @@ impl SceneFile {
 
     /// Parses a scene; `file` names it in errors.
     pub fn from_toml_str(text: &str, file: &str) -> Result<SceneFile, SceneFileError> {
-        toml::from_str(text).map_err(|e| SceneFileError::Parse {
-            file: file.into(),
-            message: e.to_string(),
-        })
+        toml::from_str(text)
+            .map_err(|e| SceneFileError::new(file, None, SceneErrorKind::Parse(e.to_string())))
+    }
+
+    /// A scene from its tables as values (what a TOML reader makes of a scene file, or a
+    /// Python dict); `file` names it in errors.
+    pub fn from_toml_value(value: toml::Value, file: &str) -> Result<SceneFile, SceneFileError> {
+        SceneFile::deserialize(value)
+            .map_err(|e| SceneFileError::new(file, None, SceneErrorKind::Parse(e.to_string())))
     }
 }

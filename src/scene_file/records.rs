@@ -1,7 +1,6 @@
 //! The scene file's records, as serde reads them.
 
 use super::frame::UpAxis;
-use cloth_collide::SurfaceOptions;
 use cloth_core::{Fabric, KesMeasurement, RestCriteria, SelfCollision, SolverSettings};
 use cloth_garment::mannequin::Measurements;
 use cloth_garment::sewing::{DrapeSettings, SewingSettings};
@@ -151,42 +150,88 @@ fn y_axis() -> [f64; 3] {
     [0.0, 1.0, 0.0]
 }
 
-/// The fabric: a preset by name, or SI values, or a Kawabata record (exactly one).
-/// A garment's panels that name a preset get it instead.
+/// The fabric: a preset by name, SI values, or a Kawabata record. A garment's panels that
+/// name a preset get it instead. In the file, exactly one of `preset = "..."`,
+/// `[fabric.si]` or `[fabric.kes]`.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FabricSpec {
-    pub preset: Option<String>,
-    pub si: Option<Fabric>,
-    pub kes: Option<KesMeasurement>,
+#[serde(try_from = "FabricTable")]
+pub enum FabricSpec {
+    Preset(String),
+    Si(Fabric),
+    Kes(KesMeasurement),
 }
 
-/// A rigid body: a generated mannequin, a mesh file, or a primitive (exactly one), turned
-/// by `rotation` and placed at `position`.
-#[derive(Debug, Clone, Deserialize)]
+/// `[fabric]` as written, before it is known to say one thing.
+#[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
+struct FabricTable {
+    preset: Option<String>,
+    si: Option<Fabric>,
+    kes: Option<KesMeasurement>,
+}
+
+impl TryFrom<FabricTable> for FabricSpec {
+    type Error = String;
+    fn try_from(t: FabricTable) -> Result<Self, String> {
+        match (t.preset, t.si, t.kes) {
+            (Some(name), None, None) => Ok(Self::Preset(name)),
+            (None, Some(si), None) => Ok(Self::Si(si)),
+            (None, None, Some(kes)) => Ok(Self::Kes(kes)),
+            _ => Err("fabric: give exactly one of preset, [fabric.si] or [fabric.kes]".into()),
+        }
+    }
+}
+
+/// A rigid body: a shape, placed, with its contact layer. In the file, one `[[bodies]]`
+/// entry with exactly one shape key (`mannequin`, `file`, `sphere`, `box`, `cylinder`,
+/// `table`) beside the placement and contact keys.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(try_from = "BodyTable")]
 pub struct BodySpec {
     pub name: Option<String>,
-    pub mannequin: Option<Measurements>,
+    pub shape: BodyShape,
+    pub placement: Placement,
+    pub contact: ContactSpec,
+}
+
+/// What a body is.
+#[derive(Debug, Clone)]
+pub enum BodyShape {
+    Mannequin(Measurements),
+    File(FileSpec),
+    Sphere(SphereSpec),
+    Box(BoxSpec),
+    /// Along z, centred on the body's position.
+    Cylinder(CylinderSpec),
+    /// A table standing on z = 0 below the body's position (its top's upper face at
+    /// `height`).
+    Table(TableSpec),
+}
+
+/// A body read from a mesh file.
+#[derive(Debug, Clone)]
+pub struct FileSpec {
     /// An OBJ, STL, PLY, glTF or GLB file.
-    pub file: Option<PathBuf>,
+    pub path: PathBuf,
     /// Scale applied to the file's coordinates (0.01 for centimetres).
-    pub scale: Option<f64>,
-    /// The file's up axis, turned to our z (y: (x, y, z) -> (x, -z, y)); glTF files are y-up
-    /// unless this says otherwise, other formats z-up.
+    pub scale: f64,
+}
+
+/// Where a body stands: turned from its `up_axis` to z, then by `rotation`, then moved to
+/// `position`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Placement {
+    /// The file's up axis, turned to our z (y: (x, y, z) -> (x, -z, y)); glTF files are
+    /// y-up unless this says otherwise, other formats and shapes z-up.
     pub up_axis: Option<UpAxis>,
     /// Degrees about x, then y, then z (after the up axis is turned to z).
-    #[serde(default)]
     pub rotation: [f64; 3],
-    pub sphere: Option<SphereSpec>,
-    #[serde(rename = "box")]
-    pub cuboid: Option<BoxSpec>,
-    /// Along z, centred on `position`.
-    pub cylinder: Option<CylinderSpec>,
-    /// A table standing on z = 0 below `position` (its top's upper face at `height`).
-    pub table: Option<TableSpec>,
-    #[serde(default)]
     pub position: [f64; 3],
+}
+
+/// A body's contact layer: each `None` takes the default (the fabric's friction).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ContactSpec {
     /// Contact thickness, m.
     pub thickness: Option<f64>,
     /// Thins the contact layer where the body is flat, down to this, m: at each point of
@@ -197,6 +242,69 @@ pub struct BodySpec {
     pub min_thickness: Option<f64>,
     /// Coulomb coefficient (the fabric's when not given).
     pub friction: Option<f64>,
+}
+
+/// A `[[bodies]]` entry as written, before it is known to have one shape.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyTable {
+    name: Option<String>,
+    mannequin: Option<Measurements>,
+    file: Option<PathBuf>,
+    scale: Option<f64>,
+    up_axis: Option<UpAxis>,
+    #[serde(default)]
+    rotation: [f64; 3],
+    sphere: Option<SphereSpec>,
+    #[serde(rename = "box")]
+    cuboid: Option<BoxSpec>,
+    cylinder: Option<CylinderSpec>,
+    table: Option<TableSpec>,
+    #[serde(default)]
+    position: [f64; 3],
+    thickness: Option<f64>,
+    min_thickness: Option<f64>,
+    friction: Option<f64>,
+}
+
+impl TryFrom<BodyTable> for BodySpec {
+    type Error = String;
+    fn try_from(t: BodyTable) -> Result<Self, String> {
+        let mut shapes = Vec::new();
+        if let Some(m) = t.mannequin {
+            shapes.push(BodyShape::Mannequin(m));
+        }
+        if let Some(path) = t.file {
+            shapes.push(BodyShape::File(FileSpec {
+                path,
+                scale: t.scale.unwrap_or(1.0),
+            }));
+        }
+        shapes.extend(t.sphere.map(BodyShape::Sphere));
+        shapes.extend(t.cuboid.map(BodyShape::Box));
+        shapes.extend(t.cylinder.map(BodyShape::Cylinder));
+        shapes.extend(t.table.map(BodyShape::Table));
+        let [shape] = <[BodyShape; 1]>::try_from(shapes).map_err(|_| {
+            "a body: give exactly one of mannequin, file, sphere, box, cylinder or table".to_string()
+        })?;
+        if t.scale.is_some() && !matches!(shape, BodyShape::File(_)) {
+            return Err("a body: `scale` applies to a body read from a file".into());
+        }
+        Ok(Self {
+            name: t.name,
+            shape,
+            placement: Placement {
+                up_axis: t.up_axis,
+                rotation: t.rotation,
+                position: t.position,
+            },
+            contact: ContactSpec {
+                thickness: t.thickness,
+                min_thickness: t.min_thickness,
+                friction: t.friction,
+            },
+        })
+    }
 }
 
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -290,11 +398,62 @@ impl OutputSpec {
     }
 }
 
-impl BodySpec {
-    pub(crate) fn surface_options(&self) -> SurfaceOptions {
-        SurfaceOptions {
-            scale: self.scale.unwrap_or(1.0),
-            ..SurfaceOptions::default()
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene(rest: &str) -> Result<SceneFile, String> {
+        let text = format!("[cloth.grid]\nnx = 3\nny = 3\nsize = [1.0, 1.0]\n{rest}");
+        toml::from_str::<SceneFile>(&text).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn the_fabric_is_exactly_one_of_a_preset_si_values_or_a_kes_record() {
+        let s = scene("[fabric]\npreset = \"silk\"\n").unwrap();
+        assert!(matches!(&s.fabric, FabricSpec::Preset(name) if name == "silk"));
+        for bad in [
+            "[fabric]\n",
+            "[fabric]\npreset = \"silk\"\n[fabric.si]\narea_density = 0.15\n\
+             warp = { law = \"linear\", stiffness = 500.0 }\nweft = { law = \"linear\", stiffness = 500.0 }\n\
+             compression_warp = 100.0\ncompression_weft = 100.0\nshear_modulus = 20.0\n\
+             bending = { warp = 1e-5, weft = 1e-5 }\n",
+        ] {
+            let e = scene(bad).unwrap_err();
+            assert!(e.contains("exactly one of preset"), "{e}");
+        }
+        let e = scene("[fabric]\npreset = \"silk\"\ncolour = \"red\"\n").unwrap_err();
+        assert!(e.contains("colour"), "{e}");
+    }
+
+    #[test]
+    fn a_body_is_one_shape_with_its_placement_and_contact() {
+        let s = scene(
+            "[fabric]\npreset = \"silk\"\n[[bodies]]\nfile = \"body.obj\"\nscale = 0.01\nup_axis = \"y\"\n\
+             position = [0.0, 0.0, 1.0]\nfriction = 0.3\n[[bodies]]\nsphere = { radius = 0.2 }\n",
+        )
+        .unwrap();
+        let [file, sphere] = &s.bodies[..] else {
+            panic!("two bodies")
+        };
+        assert!(matches!(&file.shape, BodyShape::File(f) if f.scale == 0.01 && f.path.ends_with("body.obj")));
+        assert_eq!(file.placement.up_axis, Some(UpAxis::Y));
+        assert_eq!(file.placement.position, [0.0, 0.0, 1.0]);
+        assert_eq!(file.contact.friction, Some(0.3));
+        assert!(matches!(&sphere.shape, BodyShape::Sphere(s) if s.radius == 0.2));
+        assert_eq!(sphere.contact.thickness, None);
+        for (bad, says) in [
+            (
+                "sphere = { radius = 0.2 }\nbox = { size = [1.0, 1.0, 1.0] }\n",
+                "exactly one of mannequin",
+            ),
+            ("position = [0.0, 0.0, 1.0]\n", "exactly one of mannequin"),
+            (
+                "sphere = { radius = 0.2 }\nscale = 2.0\n",
+                "`scale` applies to a body read from a file",
+            ),
+        ] {
+            let e = scene(&format!("[fabric]\npreset = \"silk\"\n[[bodies]]\n{bad}")).unwrap_err();
+            assert!(e.contains(says), "{bad}: {e}");
         }
     }
 }

@@ -3,6 +3,7 @@
 //! an interrupt keeps the last good state and says what happened.
 
 use super::build::{Prepared, PreparedCloth, SheetTest};
+use super::error::{SceneErrorKind, SceneFileError};
 use super::fit::fit_where_stretched;
 use super::observer::RunObserver;
 use super::panel_report::panel_reports;
@@ -11,7 +12,6 @@ use super::records::SceneFile;
 use super::report::{Measurement, RunOutcome, RunReport, RunSettings, TangleRecord};
 use super::strain_summary::StrainSummary;
 use super::verdict::verdict;
-use super::SceneFileError;
 use cloth_core::{
     body_intersections_by_edge, math::Vec3, self_intersecting_pairs, BodyIntersections, ClothMesh, Collider,
     StopReason, StrainReport,
@@ -133,9 +133,8 @@ impl Prepared {
             }
             PreparedCloth::Sheet { builder, test } => {
                 sheet_test = test;
-                let mut sim = builder.build().map_err(|source| SceneFileError::Param {
-                    file: scene.name.clone(),
-                    source,
+                let mut sim = builder.build().map_err(|source| {
+                    SceneFileError::new(&scene.name, None, SceneErrorKind::Param(source))
                 })?;
                 sim.set_interrupt(interrupt);
                 let mut rec = Recorder::new(observer, &scene.output, frames_dir, sim.mesh(), sim.positions());

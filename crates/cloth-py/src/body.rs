@@ -6,7 +6,10 @@ use crate::convert::{from_toml_value, to_toml};
 use crate::errors::input;
 use cloth::collide::{Bodies, TriSurface};
 use cloth::garment::mannequin::Measurements;
-use cloth::scene_file::BodySpec;
+use cloth::scene_file::{
+    BodyShape, BodySpec, BoxSpec, ContactSpec, CylinderSpec, FileSpec, Placement, SphereSpec, TableSpec,
+    UpAxis,
+};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
@@ -32,35 +35,29 @@ struct Common<'a, 'py> {
 }
 
 impl Body {
-    /// Builds the body a `[[bodies]]` entry with `shape = value` (and `extra` keys) makes;
-    /// errors name the constructor.
-    fn build(
-        shape: &str,
-        value: toml::Value,
-        extra: toml::Table,
-        common: Common<'_, '_>,
-        dir: &Path,
-    ) -> PyResult<Self> {
-        let mut table = extra;
-        table.insert(shape.into(), value);
-        if let Some(p) = common.position {
-            table.insert("position".into(), to_toml(p, "position")?);
-        }
-        if let Some(t) = common.thickness {
-            table.insert("thickness".into(), toml::Value::Float(t));
-        }
-        if let Some(mu) = common.friction {
-            table.insert("friction".into(), toml::Value::Float(mu));
-        }
-        if let Some(n) = &common.name {
-            table.insert("name".into(), toml::Value::String(n.clone()));
-        }
-        let what = format!("Body.{shape}");
-        let spec: BodySpec = from_toml_value(toml::Value::Table(table), &what)?;
-        let parts = spec.build("cloth.Body", dir, shape, None).map_err(input)?;
+    /// Builds the body a scene's `[[bodies]]` entry of `shape`, placed by `turn` (up axis
+    /// and rotation) and `common`, makes; errors name the constructor (`key`).
+    fn build(shape: BodyShape, turn: Placement, common: Common<'_, '_>, key: &str) -> PyResult<Self> {
+        let position = match common.position {
+            Some(p) => numbers::<3>(p, "position")?,
+            None => [0.0; 3],
+        };
+        let spec = BodySpec {
+            name: common.name.clone(),
+            shape,
+            placement: Placement { position, ..turn },
+            contact: ContactSpec {
+                thickness: common.thickness,
+                min_thickness: None,
+                friction: common.friction,
+            },
+        };
+        let parts = spec
+            .build("cloth.Body", Path::new("."), key, None)
+            .map_err(input)?;
         let name = common.name.unwrap_or_else(|| match parts.as_slice() {
             [one] => one.name().to_string(),
-            _ => shape.to_string(),
+            _ => key.to_string(),
         });
         Ok(Self { name, parts })
     }
@@ -85,14 +82,6 @@ pub fn collider(bodies: &[PyRef<'_, Body>]) -> Arc<Bodies> {
     ))
 }
 
-fn table(entries: &[(&str, toml::Value)]) -> toml::Value {
-    toml::Value::Table(entries.iter().map(|(k, v)| (k.to_string(), v.clone())).collect())
-}
-
-fn floats(v: &[f64]) -> toml::Value {
-    toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
-}
-
 #[pymethods]
 impl Body {
     /// An OBJ, STL, PLY, glTF or GLB file (`scale` 0.01 for centimetres), turned from its
@@ -114,23 +103,35 @@ impl Body {
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
-        let file = toml::Value::String(path.display().to_string());
-        let mut extra: toml::Table = [("scale".to_string(), toml::Value::Float(scale))]
-            .into_iter()
-            .collect();
-        if let Some(up) = up_axis {
-            extra.insert("up_axis".into(), toml::Value::String(up.to_string()));
-        }
-        if let Some(r) = rotation {
-            extra.insert("rotation".into(), to_toml(r, "rotation")?);
-        }
+        let up_axis = match up_axis {
+            None => None,
+            Some("y") => Some(UpAxis::Y),
+            Some("z") => Some(UpAxis::Z),
+            Some(other) => {
+                return Err(input(format!(
+                    "Body.load: up_axis must be \"y\" or \"z\", not {other:?}"
+                )))
+            }
+        };
+        let turn = Placement {
+            up_axis,
+            rotation: rotation
+                .map(|r| numbers::<3>(r, "rotation"))
+                .transpose()?
+                .unwrap_or_default(),
+            position: [0.0; 3],
+        };
+        let file = BodyShape::File(FileSpec {
+            path: path.clone(),
+            scale,
+        });
         let common = Common {
             position,
             thickness,
             friction,
             name,
         };
-        let body = Self::build("file", file, extra, common, Path::new("."))?;
+        let body = Self::build(file, turn, common, "file")?;
         let warnings = py.import("warnings")?;
         for d in body.defects() {
             warnings.call_method1("warn", (format!("{}: {d}", path.display()),))?;
@@ -155,14 +156,18 @@ impl Body {
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
-        let shape = table(&[("radius", toml::Value::Float(radius))]);
         let common = Common {
             position,
             thickness,
             friction,
             name,
         };
-        Self::build("sphere", shape, toml::Table::new(), common, Path::new("."))
+        Self::build(
+            BodyShape::Sphere(SphereSpec { radius }),
+            Placement::default(),
+            common,
+            "sphere",
+        )
     }
 
     /// A box of `size` (x, y, z) centred on `position`.
@@ -175,14 +180,19 @@ impl Body {
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
-        let shape = table(&[("size", floats(&numbers::<3>(size, "size")?))]);
+        let size = numbers::<3>(size, "size")?;
         let common = Common {
             position,
             thickness,
             friction,
             name,
         };
-        Self::build("box", shape, toml::Table::new(), common, Path::new("."))
+        Self::build(
+            BodyShape::Box(BoxSpec { size }),
+            Placement::default(),
+            common,
+            "box",
+        )
     }
 
     /// A cylinder along z of `radius` and `height`, centred on `position`.
@@ -196,17 +206,14 @@ impl Body {
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
-        let shape = table(&[
-            ("radius", toml::Value::Float(radius)),
-            ("height", toml::Value::Float(height)),
-        ]);
         let common = Common {
             position,
             thickness,
             friction,
             name,
         };
-        Self::build("cylinder", shape, toml::Table::new(), common, Path::new("."))
+        let shape = BodyShape::Cylinder(CylinderSpec { radius, height });
+        Self::build(shape, Placement::default(), common, "cylinder")
     }
 
     /// A table standing on z = 0 below `position`: a top of `size` (width, depth,
@@ -224,19 +231,19 @@ impl Body {
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
-        let shape = table(&[
-            ("size", floats(&numbers::<3>(size, "size")?)),
-            ("height", toml::Value::Float(height)),
-            ("leg_width", toml::Value::Float(leg_width)),
-            ("leg_inset", toml::Value::Float(leg_inset)),
-        ]);
+        let shape = BodyShape::Table(TableSpec {
+            size: numbers::<3>(size, "size")?,
+            height,
+            leg_width,
+            leg_inset,
+        });
         let common = Common {
             position,
             thickness,
             friction,
             name,
         };
-        Self::build("table", shape, toml::Table::new(), common, Path::new("."))
+        Self::build(shape, Placement::default(), common, "table")
     }
 
     /// The parametric mannequin: `height`, `bust`, `waist`, `hip`, `shoulder_width`,
@@ -268,13 +275,13 @@ impl Body {
                 shape.insert(key, to_toml(&v, &what)?);
             }
         }
-        if with_arms {
-            // As `cloth mannequin --arms`: the average arms, their length scaled to the body.
-            let body: Measurements = from_toml_value(toml::Value::Table(shape.clone()), "Body.mannequin")?;
-            let arms = toml::Value::try_from(body.with_arms().arms)
-                .map_err(|e| input(format!("Body.mannequin: arms: {e}")))?;
-            shape.insert("arms".into(), arms);
-        }
+        let measurements: Measurements = from_toml_value(toml::Value::Table(shape), "Body.mannequin")?;
+        // As `cloth mannequin --arms`: the average arms, their length scaled to the body.
+        let measurements = if with_arms {
+            measurements.with_arms()
+        } else {
+            measurements
+        };
         let common = Common {
             position,
             thickness,
@@ -282,11 +289,10 @@ impl Body {
             name,
         };
         Self::build(
-            "mannequin",
-            toml::Value::Table(shape),
-            toml::Table::new(),
+            BodyShape::Mannequin(measurements),
+            Placement::default(),
             common,
-            Path::new("."),
+            "mannequin",
         )
     }
 

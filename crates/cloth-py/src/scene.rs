@@ -53,11 +53,13 @@ impl Scene {
     #[staticmethod]
     #[pyo3(signature = (values, *, base_dir = PathBuf::from("."), name = "<scene>".to_string()))]
     fn from_dict(values: &Bound<'_, PyAny>, base_dir: PathBuf, name: String) -> PyResult<Self> {
-        // Through TOML text, so a dict is read exactly as the file it could have been,
-        // and errors quote the offending line.
-        let text = toml::to_string(&to_toml(values, "scene")?)
-            .map_err(|e| input(format!("{name}: cannot be written as a scene: {e}")))?;
-        Self::from_toml(&text, base_dir, name)
+        // The records straight from the dict's values, read as the file's tables are.
+        let file = SceneFile::from_toml_value(to_toml(values, "scene")?, &name).map_err(input)?;
+        Ok(Self {
+            file,
+            path: name,
+            dir: base_dir,
+        })
     }
 
     /// The scene's `name`.

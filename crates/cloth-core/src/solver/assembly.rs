@@ -131,23 +131,43 @@ pub(crate) struct ForceModel {
     bending_calibration: Vec<[f64; 2]>,
 }
 
+/// What the cloth is made of: triangle `t` is of `fabrics[triangle_fabric[t]]` (as the
+/// builder checked); `calibration` gives each fabric's bending calibration instead of
+/// computing it.
+pub(crate) struct Materials<'a> {
+    pub fabrics: Vec<Fabric>,
+    pub triangle_fabric: &'a [usize],
+    pub calibration: Option<Vec<[f64; 2]>>,
+}
+
+/// The particle pairs that seam forces may pull together (see [`SeamPull`]), each with its
+/// weight.
+#[derive(Clone, Copy)]
+pub(crate) struct SeamPairs<'a> {
+    pub pairs: &'a [[usize; 2]],
+    pub weights: &'a [f64],
+}
+
 impl ForceModel {
-    /// Builds the elements and the matrix pattern they fill. Triangle `t` is of
-    /// `fabrics[triangle_fabric[t]]` (as the builder checked); `seams` are the particle
-    /// pairs that seam forces may pull together (see [`SeamPull`]), each with its weight in
-    /// `seam_weights`; `attachments` hold particles on one side of planes; `calibration` gives
-    /// each fabric's bending calibration instead of computing it; hinges along a clamp of
-    /// `pinned` particles are stiffened (see [`bending::clamp_factor`]).
+    /// Builds the elements and the matrix pattern they fill. `attachments` hold particles
+    /// on one side of planes; hinges along a clamp of `pinned` particles are stiffened (see
+    /// [`bending::clamp_factor`]).
     pub fn new(
         mesh: &ClothMesh,
-        fabrics: Vec<Fabric>,
-        triangle_fabric: &[usize],
-        seams: &[[usize; 2]],
-        seam_weights: &[f64],
+        materials: Materials<'_>,
+        seams: SeamPairs<'_>,
         attachments: &[Attachment],
-        calibration: Option<Vec<[f64; 2]>>,
         pinned: &[bool],
     ) -> (Self, BlockSparse) {
+        let Materials {
+            fabrics,
+            triangle_fabric,
+            calibration,
+        } = materials;
+        let SeamPairs {
+            pairs: seams,
+            weights: seam_weights,
+        } = seams;
         let fabric_of = |t: usize| triangle_fabric[t];
         let n = mesh.vertex_count();
         let mut pairs = Vec::new();
@@ -662,12 +682,16 @@ mod tests {
         // One seam pair within the pull's reach and two beyond it, sharing a particle.
         let (mut model, matrix) = ForceModel::new(
             &mesh,
-            vec![fabric],
-            &vec![0; mesh.triangles().len()],
-            &SEAMS,
-            &WEIGHTS,
+            Materials {
+                fabrics: vec![fabric],
+                triangle_fabric: &vec![0; mesh.triangles().len()],
+                calibration: None,
+            },
+            SeamPairs {
+                pairs: &SEAMS,
+                weights: &WEIGHTS,
+            },
             &attachments(&mesh),
-            None,
             &vec![false; mesh.vertex_count()],
         );
         model.set_seam_pull(SeamPull {

@@ -1,6 +1,6 @@
 //! The Simulation: owns the state and all scratch, and steps.
 
-use super::assembly::{ForceModel, SeamPull};
+use super::assembly::{ForceModel, Materials, SeamPairs, SeamPull};
 use super::error::{DivergenceReason, SimError, SolveFailure};
 use super::rest::MIN_WINDOW;
 use super::{
@@ -235,16 +235,16 @@ impl SimulationBuilder {
                 "positive finite factors",
             )?;
         }
-        let (model, matrix) = ForceModel::new(
-            &self.mesh,
-            self.fabrics,
-            &self.triangle_fabric,
-            &self.seams,
-            &seam_weights,
-            &self.attachments,
-            self.bending_calibration,
-            &pinned,
-        );
+        let materials = Materials {
+            fabrics: self.fabrics,
+            triangle_fabric: &self.triangle_fabric,
+            calibration: self.bending_calibration,
+        };
+        let seams = SeamPairs {
+            pairs: &self.seams,
+            weights: &seam_weights,
+        };
+        let (model, matrix) = ForceModel::new(&self.mesh, materials, seams, &self.attachments, &pinned);
         let contacts = self.collider.map(|collider| {
             let fabrics = model.fabrics();
             let stiffness = model.penalty_stiffness();
