@@ -2,7 +2,8 @@
 //! a file without them must be flat and is its own rest shape.
 
 use cloth_core::{math::Vec3, ClothMesh};
-use cloth_formats::obj::{fan, ObjFile};
+use cloth_formats::mesh::fan;
+use cloth_formats::obj::ObjFile;
 use cloth_formats::FormatError;
 use nalgebra::{Isometry3, Point3, Vector2};
 use std::path::Path;

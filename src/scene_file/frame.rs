@@ -1,5 +1,6 @@
 //! Turning a file's frame into ours: z up, the body facing -y.
 
+use cloth_formats::MeshFormat;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -16,11 +17,7 @@ impl UpAxis {
     /// The file's up axis when the scene does not say: glTF's is y by definition, other
     /// formats are taken as written (z up).
     pub fn of_file(path: &std::path::Path) -> UpAxis {
-        let gltf = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
-        if gltf {
+        if matches!(MeshFormat::of(path), Ok(MeshFormat::Gltf)) {
             UpAxis::Y
         } else {
             UpAxis::Z

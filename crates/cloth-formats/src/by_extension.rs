@@ -41,39 +41,46 @@ impl MeshFormat {
 /// Reads the triangles of an OBJ, STL, PLY, glTF or GLB file, in the file's own frame and
 /// numbering. Every coordinate is finite.
 pub fn read_mesh(path: &Path) -> Result<FileMesh, FormatError> {
-    let mesh = match MeshFormat::of(path)? {
-        MeshFormat::Obj => {
-            let obj = ObjFile::read(path)?;
-            let triangles = obj.triangles().map(|t| t.map(|i| i as u32)).collect();
-            FileMesh {
-                positions: obj.positions,
-                triangles,
+    MeshFormat::of(path)?.read(path)
+}
+
+impl MeshFormat {
+    /// Reads `path` as this format (see [`read_mesh`]).
+    pub fn read(self, path: &Path) -> Result<FileMesh, FormatError> {
+        let mesh = match self {
+            MeshFormat::Obj => {
+                let obj = ObjFile::read(path)?;
+                let triangles = obj.triangles().map(|t| t.map(|i| i as u32)).collect();
+                FileMesh {
+                    positions: obj.positions,
+                    triangles,
+                }
             }
-        }
-        MeshFormat::Ply => {
-            let ply = PlyMesh::read(path)?;
-            let triangles = ply.triangles().collect();
-            FileMesh {
-                positions: ply.positions,
-                triangles,
+            MeshFormat::Ply => {
+                let ply = PlyMesh::read(path)?;
+                let triangles = ply.triangles().collect();
+                FileMesh {
+                    positions: ply.positions,
+                    triangles,
+                }
             }
+            MeshFormat::Stl => read_stl(path)?,
+            MeshFormat::Gltf => read_gltf(path)?,
+        };
+        // OBJ and PLY refuse these with their line or element; STL and glTF have neither.
+        if let Some((index, p)) = mesh
+            .positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
+        {
+            return Err(FormatError::BadElement {
+                path: path.to_path_buf(),
+                element: "vertex",
+                index,
+                message: format!("non-finite coordinate in ({}, {}, {})", p.x, p.y, p.z),
+            });
         }
-        MeshFormat::Stl => read_stl(path)?,
-        MeshFormat::Gltf => read_gltf(path)?,
-    };
-    // OBJ and PLY refuse these with their line or element; STL and glTF have neither.
-    if let Some((index, p)) = mesh
-        .positions
-        .iter()
-        .enumerate()
-        .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
-    {
-        return Err(FormatError::BadElement {
-            path: path.to_path_buf(),
-            element: "vertex",
-            index,
-            message: format!("non-finite coordinate in ({}, {}, {})", p.x, p.y, p.z),
-        });
+        Ok(mesh)
     }
-    Ok(mesh)
 }

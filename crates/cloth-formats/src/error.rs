@@ -47,21 +47,6 @@ pub enum FormatError {
     },
 }
 
-impl FormatError {
-    /// The file at fault.
-    pub fn path(&self) -> &Path {
-        match self {
-            Self::Io { path, .. }
-            | Self::Parse { path, .. }
-            | Self::UnknownFormat { path, .. }
-            | Self::MissingElement { path, .. }
-            | Self::MissingProperty { path, .. }
-            | Self::BadElement { path, .. }
-            | Self::IndexOutOfRange { path, .. } => path,
-        }
-    }
-}
-
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, FormatError> {
     std::fs::read(path).map_err(|source| FormatError::Io {
         path: path.to_path_buf(),

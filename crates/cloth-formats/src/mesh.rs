@@ -9,3 +9,8 @@ pub struct FileMesh {
     pub positions: Vec<Vec3>,
     pub triangles: Vec<[u32; 3]>,
 }
+
+/// The triangles of a polygon's fan from its first corner, in order.
+pub fn fan<T: Copy>(corners: &[T]) -> impl Iterator<Item = [T; 3]> + '_ {
+    (1..corners.len().saturating_sub(1)).map(move |k| [corners[0], corners[k], corners[k + 1]])
+}

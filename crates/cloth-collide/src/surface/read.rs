@@ -4,7 +4,7 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use cloth_formats::obj::{write_objects, ObjObject};
-use cloth_formats::{read_mesh, MeshFormat};
+use cloth_formats::MeshFormat;
 
 use super::{SurfaceDefect, SurfaceError, SurfaceOptions, TriSurface};
 
@@ -18,7 +18,7 @@ impl TriSurface {
     /// what joins its facets, and is not reported as a defect.
     pub fn read(path: &Path, options: &SurfaceOptions) -> Result<Self, SurfaceError> {
         let format = MeshFormat::of(path)?;
-        let mesh = read_mesh(path)?;
+        let mesh = format.read(path)?;
         let mut surface =
             TriSurface::new(mesh.positions, mesh.triangles, options).map_err(|e| e.in_file(path))?;
         if format == MeshFormat::Stl {

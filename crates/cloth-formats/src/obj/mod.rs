@@ -3,5 +3,5 @@
 mod read;
 mod write;
 
-pub use read::{fan, ObjFace, ObjFile, ObjSyntaxError};
+pub use read::{ObjFace, ObjFile, ObjSyntaxError};
 pub use write::{write_cloth_obj, write_cloth_obj_with_uv, write_objects, ObjObject};

@@ -4,6 +4,7 @@
 //! and are skipped.
 
 use crate::error::{read_bytes, FormatError};
+use crate::mesh::fan;
 use cloth_core::math::Vec3;
 use std::path::Path;
 
@@ -132,11 +133,6 @@ impl ObjFile {
             texcoords,
         })
     }
-}
-
-/// The triangles of a polygon's fan from its first corner, in order.
-pub fn fan<T: Copy>(corners: &[T]) -> impl Iterator<Item = [T; 3]> + '_ {
-    (1..corners.len().saturating_sub(1)).map(move |k| [corners[0], corners[k], corners[k + 1]])
 }
 
 /// Every word as a finite number, or `None` if one is not.

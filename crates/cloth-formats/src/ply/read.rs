@@ -3,6 +3,7 @@
 //! `vertex_indices` (or `vertex_index`) list.
 
 use crate::error::{read_bytes, FormatError};
+use crate::mesh::fan;
 use cloth_core::math::Vec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Property, PropertyType};
@@ -136,7 +137,7 @@ impl PlyMesh {
 
     /// The faces as triangles: each polygon a fan from its first corner.
     pub fn triangles(&self) -> impl Iterator<Item = [u32; 3]> + '_ {
-        self.faces.iter().flat_map(|f| crate::obj::fan(f))
+        self.faces.iter().flat_map(|f| fan(f))
     }
 }
 
