@@ -2,7 +2,7 @@
 
 use crate::body::Parts;
 use crate::Body;
-use cloth_core::{math::Vec3, Collider, Proximity, SharpFeature, SurfacePoint};
+use cloth_core::{math::Vec3, Collider, ParticlePath, Proximity, SharpFeature, SurfacePoint};
 use nalgebra::Point3;
 
 /// The rigid bodies of a scene, answering the solver's contact queries.
@@ -50,21 +50,11 @@ impl Bodies {
 impl Bodies {
     /// The nearest entry or surface point over `parts` of every body (see
     /// [`Collider::sweep`]).
-    #[allow(clippy::too_many_arguments)]
-    fn sweep_parts(
-        &self,
-        parts: Parts,
-        t0: f64,
-        x0: &Vec3,
-        t1: f64,
-        x1: &Vec3,
-        start_gap_lower_bound: f64,
-        reach: f64,
-    ) -> Proximity {
+    fn sweep_parts(&self, parts: Parts, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity {
         let mut best: Option<(SurfacePoint, f64)> = None;
         for (k, body) in self.bodies.iter().enumerate() {
             let d = body.thickness();
-            let Some(hit) = body.sweep(parts, t0, x0, t1, x1, start_gap_lower_bound + d, d + reach) else {
+            let Some(hit) = body.sweep(parts, path, start_gap_lower_bound + d, d + reach) else {
                 continue;
             };
             // The earliest entry wins; among plain proximities, the smallest gap.
@@ -81,7 +71,7 @@ impl Bodies {
                 point: hit.point,
                 normal: hit.normal,
                 distance: hit.distance,
-                velocity: body.motion().velocity_at(t1, &hit.point),
+                velocity: body.motion().velocity_at(path.t1, &hit.point),
                 thickness: hit.thickness,
                 friction: body.friction(),
                 crossed: hit.crossed,
@@ -98,28 +88,12 @@ impl Bodies {
 }
 
 impl Collider for Bodies {
-    fn sweep(
-        &self,
-        t0: f64,
-        x0: &Vec3,
-        t1: f64,
-        x1: &Vec3,
-        start_gap_lower_bound: f64,
-        reach: f64,
-    ) -> Proximity {
-        self.sweep_parts(Parts::All, t0, x0, t1, x1, start_gap_lower_bound, reach)
+    fn sweep(&self, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity {
+        self.sweep_parts(Parts::All, path, start_gap_lower_bound, reach)
     }
 
-    fn sweep_past_thin_parts(
-        &self,
-        t0: f64,
-        x0: &Vec3,
-        t1: f64,
-        x1: &Vec3,
-        start_gap_lower_bound: f64,
-        reach: f64,
-    ) -> Proximity {
-        self.sweep_parts(Parts::Thick, t0, x0, t1, x1, start_gap_lower_bound, reach)
+    fn sweep_past_thin_parts(&self, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity {
+        self.sweep_parts(Parts::Thick, path, start_gap_lower_bound, reach)
     }
 
     fn motion_bound(&self, t0: f64, t1: f64) -> f64 {

@@ -6,7 +6,7 @@ use crate::layer::thinned_layer;
 use crate::surface::{SharpFeature as SurfaceFeature, TriSurface};
 use crate::thin_parts::{thin_triangles, THIN_PART};
 use crate::Motion;
-use cloth_core::math::Vec3;
+use cloth_core::{math::Vec3, ParticlePath};
 use nalgebra::{Isometry3, Point3};
 
 /// Default contact thickness, m: a few millimetres, about a fabric's thickness.
@@ -392,28 +392,25 @@ impl Body {
         }
     }
 
-    /// The first entry into the body (its `parts`) along the straight path from `x0` (at
-    /// `t0`) to `x1` (at `t1`), relative to the body; else the nearest surface point to
-    /// `x1` within `max_distance`. The path test is skipped when the path is shorter than
-    /// `min_start_distance`, a lower bound on the distance of `x0`.
-    #[allow(clippy::too_many_arguments)]
+    /// The first entry into the body (its `parts`) along the straight `path`, relative
+    /// to the body; else the nearest surface point to its end within `max_distance`. The
+    /// path test is skipped when the path is shorter than `min_start_distance`, a lower
+    /// bound on the distance of its start.
     pub(crate) fn sweep(
         &self,
         parts: Parts,
-        t0: f64,
-        x0: &Vec3,
-        t1: f64,
-        x1: &Vec3,
+        path: &ParticlePath,
         min_start_distance: f64,
         max_distance: f64,
     ) -> Option<BodyPoint> {
+        let &ParticlePath { t0, x0, t1, x1 } = path;
         let surface = self.contact_mesh(parts)?;
         let pose1 = self.pose(t1);
-        let p1 = pose1.inverse_transform_point(&Point3::from(*x1)).coords;
+        let p1 = pose1.inverse_transform_point(&Point3::from(x1)).coords;
         let p0 = if t0 == t1 {
-            pose1.inverse_transform_point(&Point3::from(*x0)).coords
+            pose1.inverse_transform_point(&Point3::from(x0)).coords
         } else {
-            self.pose(t0).inverse_transform_point(&Point3::from(*x0)).coords
+            self.pose(t0).inverse_transform_point(&Point3::from(x0)).coords
         };
         let LocalPoint {
             point,

@@ -2,7 +2,7 @@
 
 use cloth_collide::{Bodies, Body, BodyError, Motion, TriSurface};
 use cloth_core::math::Vec3;
-use cloth_core::{Collider, Proximity};
+use cloth_core::{Collider, ParticlePath, Proximity};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion};
 
 fn ball() -> Body {
@@ -121,15 +121,15 @@ fn cloth_passing_thin_parts_meets_only_the_thick_ones() {
     assert!((thin - 0.5).abs() < 1e-12, "{thin}");
     // A path through the hand crosses it, unless it passes thin parts.
     let (a, b) = (Vec3::new(0.45, 0.0, 0.0), Vec3::new(0.55, 0.0, 0.0));
-    assert!(is_near(bodies.sweep(0.0, &a, 0.0, &b, 0.0, 0.01)));
+    assert!(is_near(bodies.sweep(&ParticlePath::new(0.0, a, 0.0, b), 0.0, 0.01)));
     assert!(!is_near(
-        bodies.sweep_past_thin_parts(0.0, &a, 0.0, &b, 0.0, 0.01)
+        bodies.sweep_past_thin_parts(&ParticlePath::new(0.0, a, 0.0, b), 0.0, 0.01)
     ));
     // A path into the trunk crosses it either way.
     let (a, b) = (Vec3::new(0.25, 0.0, 0.0), Vec3::new(0.15, 0.0, 0.0));
     for p in [
-        bodies.sweep(0.0, &a, 0.0, &b, 0.0, 0.01),
-        bodies.sweep_past_thin_parts(0.0, &a, 0.0, &b, 0.0, 0.01),
+        bodies.sweep(&ParticlePath::new(0.0, a, 0.0, b), 0.0, 0.01),
+        bodies.sweep_past_thin_parts(&ParticlePath::new(0.0, a, 0.0, b), 0.0, 0.01),
     ] {
         match p {
             Proximity::Near(hit) => assert!(hit.crossed && (hit.point.x - 0.2).abs() < 1e-9, "{hit:?}"),
@@ -159,7 +159,7 @@ fn a_thinned_layer_is_thin_on_a_broad_curve_and_stays_thick_on_a_tight_one() {
     let broad = Body::new("ball", TriSurface::icosphere(0.5, 5).unwrap());
     let dip = 0.015f64.powi(2) / (8.0 * 0.5);
     let x = Vec3::new(0.0, 0.0, 0.502);
-    let gap = |body: Body| match Bodies::new(vec![body]).sweep(0.0, &x, 0.0, &x, 0.0, 0.01) {
+    let gap = |body: Body| match Bodies::new(vec![body]).sweep(&ParticlePath::still(0.0, x), 0.0, 0.01) {
         Proximity::Near(p) => p.gap(),
         far => panic!("{far:?}"),
     };

@@ -27,7 +27,7 @@ pub mod solver;
 
 pub use contact::{
     body_intersections_by_edge, count_body_intersections, BodyIntersections, Collider, ContactMode,
-    PassThrough, Proximity, SharpFeature, SurfacePoint,
+    ParticlePath, PassThrough, Proximity, SharpFeature, SurfacePoint,
 };
 pub use energy::attachment::Attachment;
 pub use error::ParamError;

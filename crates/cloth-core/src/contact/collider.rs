@@ -33,6 +33,27 @@ impl SurfacePoint {
     }
 }
 
+/// A particle's straight way over a step: from `x0` at time `t0` to `x1` at `t1`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParticlePath {
+    pub t0: f64,
+    pub x0: Vec3,
+    pub t1: f64,
+    pub x1: Vec3,
+}
+
+impl ParticlePath {
+    pub fn new(t0: f64, x0: Vec3, t1: f64, x1: Vec3) -> Self {
+        Self { t0, x0, t1, x1 }
+    }
+
+    /// A particle standing at `x` at time `t`: a sweep of it asks for the nearest surface
+    /// point only.
+    pub fn still(t: f64, x: Vec3) -> Self {
+        Self::new(t, x, t, x)
+    }
+}
+
 /// What a collider knows of one particle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Proximity {
@@ -70,38 +91,22 @@ pub struct SharpFeature {
 /// Rigid bodies as the solver needs them. Implementations answer queries only; the solver
 /// decides what is in contact and owns all per-particle state and parallelism.
 pub trait Collider: Send + Sync + std::fmt::Debug {
-    /// Where a particle moving in a straight line (relative to each body) from `x0` at time
-    /// `t0` to `x1` at `t1` ends up relative to the bodies.
+    /// Where a particle moving in a straight line (relative to each body) along `path`
+    /// ends up relative to the bodies.
     ///
     /// If the path enters a body, the answer is the entry point with `crossed` set: the
     /// continuous test that keeps fast particles from tunnelling. Otherwise it is the
-    /// nearest surface point to `x1` if that lies within the body's thickness plus `reach`,
-    /// or `Far`. `start_gap_lower_bound` is what the solver knows of `x0` (a lower bound on
-    /// its distance beyond every thickness); an implementation may skip the path test when
+    /// nearest surface point to the path's end if that lies within the body's thickness plus `reach`,
+    /// or `Far`. `start_gap_lower_bound` is what the solver knows of the path's start (a lower
+    /// bound on its distance beyond every thickness); an implementation may skip the path test when
     /// the relative path is shorter than that.
-    fn sweep(
-        &self,
-        t0: f64,
-        x0: &Vec3,
-        t1: f64,
-        x1: &Vec3,
-        start_gap_lower_bound: f64,
-        reach: f64,
-    ) -> Proximity;
+    fn sweep(&self, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity;
 
     /// As [`Collider::sweep`], for a particle passing through the bodies' thin parts
     /// (hands, forearms: where a body is thinner under its surface than a hand is wide),
     /// which are not there for it; a collider without thin parts answers as `sweep` does.
-    fn sweep_past_thin_parts(
-        &self,
-        t0: f64,
-        x0: &Vec3,
-        t1: f64,
-        x1: &Vec3,
-        start_gap_lower_bound: f64,
-        reach: f64,
-    ) -> Proximity {
-        self.sweep(t0, x0, t1, x1, start_gap_lower_bound, reach)
+    fn sweep_past_thin_parts(&self, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity {
+        self.sweep(path, start_gap_lower_bound, reach)
     }
 
     /// An upper bound on how far any surface point moves between `t0` and `t1` (0 when

@@ -5,7 +5,7 @@ mod step;
 mod particle_contacts;
 mod feature_contacts;
 
-pub use collider::{Collider, Proximity, SharpFeature, SurfacePoint};
+pub use collider::{Collider, ParticlePath, Proximity, SharpFeature, SurfacePoint};
 pub(crate) use particle_contacts::ParticleContacts;
 pub use particle_contacts::{ContactMode, PassThrough, SLIP_SPEED};
 pub use step::{StepEnd, StepStart};

@@ -2,7 +2,7 @@
 //! `r'|S = 0` as a velocity constraint in the filter, Coulomb friction, release when the
 //! body would have to pull, and the continuous end-of-step test that keeps particles out.
 
-use super::{Collider, Proximity, StepEnd, StepStart, SurfacePoint};
+use super::{Collider, ParticlePath, Proximity, StepEnd, StepStart, SurfacePoint};
 use crate::linalg::{BlockSparse, Constraint, ConstraintError, ConstraintKind, Filter};
 use crate::math::{Mat3, Vec3};
 use crate::parallelism::Parallelism;
@@ -240,7 +240,7 @@ impl ParticleContacts {
     pub fn refresh(&mut self, collider: &dyn Collider, t: f64, x: &[Vec3], par: Parallelism) {
         let reach = self.reach;
         let query = |(s, xi): (&mut ParticleState, &Vec3)| {
-            s.proximity = sweep_for(collider, s.passing, (t, xi), (t, xi), f64::INFINITY, reach);
+            s.proximity = sweep_for(collider, s.passing, &ParticlePath::still(t, *xi), f64::INFINITY, reach);
             s.mode = ContactMode::Free;
             s.released = false;
             s.demand_known = false;
@@ -488,7 +488,7 @@ impl ParticleContacts {
             if s.passing && s.watched {
                 // Out once it ends the step clear of every body, thin parts and all (in the
                 // contact layer at most, from where a later step's contact carries it out).
-                let whole = collider.sweep(t0, x0, t1, x1, f64::NEG_INFINITY, reach);
+                let whole = collider.sweep(&ParticlePath::new(t0, *x0, t1, *x1), f64::NEG_INFINITY, reach);
                 s.inside = matches!(whole, Proximity::Near(p) if p.distance < 0.0 || p.crossed);
             }
             let start_bound = s.proximity.gap_lower_bound();
@@ -500,7 +500,7 @@ impl ParticleContacts {
                 };
                 return SweepCounts::default();
             }
-            let mut proximity = sweep_for(collider, s.passing, (t0, x0), (t1, x1), start_bound, reach);
+            let mut proximity = sweep_for(collider, s.passing, &ParticlePath::new(t0, *x0, t1, *x1), start_bound, reach);
             let mut counts = SweepCounts::default();
             if let Proximity::Near(p) = &mut proximity {
                 if p.crossed || p.distance < 0.0 {
@@ -508,7 +508,7 @@ impl ParticleContacts {
                     counts.crossings = p.crossed as usize;
                     let passing = s.passing;
                     let query = |a: &Vec3, b: &Vec3| {
-                        sweep_for(collider, passing, (t1, a), (t1, b), f64::NEG_INFINITY, reach)
+                        sweep_for(collider, passing, &ParticlePath::new(t1, *a, t1, *b), f64::NEG_INFINITY, reach)
                     };
                     let (out, other) = out_of_pinch(p, query);
                     *x1 = out;
@@ -582,19 +582,12 @@ impl ParticleContacts {
     }
 }
 
-/// The collider's sweep from `x0` at `t0` to `x1` at `t1` for a particle that is
-/// `passing` the bodies' thin parts or not.
-fn sweep_for(
-    collider: &dyn Collider,
-    passing: bool,
-    (t0, x0): (f64, &Vec3),
-    (t1, x1): (f64, &Vec3),
-    start_bound: f64,
-    reach: f64,
-) -> Proximity {
+/// The collider's sweep along `path` for a particle that is `passing` the bodies' thin
+/// parts or not.
+fn sweep_for(collider: &dyn Collider, passing: bool, path: &ParticlePath, start_bound: f64, reach: f64) -> Proximity {
     match passing {
-        true => collider.sweep_past_thin_parts(t0, x0, t1, x1, start_bound, reach),
-        false => collider.sweep(t0, x0, t1, x1, start_bound, reach),
+        true => collider.sweep_past_thin_parts(path, start_bound, reach),
+        false => collider.sweep(path, start_bound, reach),
     }
 }
 

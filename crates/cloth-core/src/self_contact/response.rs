@@ -10,7 +10,6 @@ use super::{owned_edge_pairs, owned_particles, SelfContacts, IMPULSE_PASSES, ZON
 use crate::contact::StepEnd;
 use crate::math::union_find::find;
 use crate::math::Vec3;
-use crate::parallelism::Parallelism;
 use crate::spatial::Aabb;
 
 /// What the impact passes did in one step.
@@ -102,7 +101,7 @@ impl SelfContacts {
             // Pairs ending too close are put right by impulses only; zones and the last
             // resort are for pairs passing through each other.
             let impulses = pass < IMPULSE_PASSES;
-            self.find_impacts(end.x0, end.x1, pass == 0, impulses, end.par, &stop);
+            self.find_impacts(end, pass == 0, impulses, &stop);
             if stop() {
                 break;
             }
@@ -179,17 +178,10 @@ impl SelfContacts {
         count
     }
 
-    /// The impacts on the paths from `x0` to `x1`: of every pair (`full`), or of the pairs
+    /// The impacts on the paths of `end`: of every pair (`full`), or of the pairs
     /// with a dirty particle; with `closing`, pairs ending too close too.
-    fn find_impacts(
-        &mut self,
-        x0: &[Vec3],
-        x1: &[Vec3],
-        full: bool,
-        closing: bool,
-        par: Parallelism,
-        stop: &(impl Fn() -> bool + Sync),
-    ) {
+    fn find_impacts(&mut self, end: &StepEnd<'_>, full: bool, closing: bool, stop: &(impl Fn() -> bool + Sync)) {
+        let (x0, x1, par): (&[Vec3], &[Vec3], _) = (end.x0, end.x1, end.par);
         let topo = &self.topology;
         let touch = self.touch;
         // Near enough to cross, or to end the step too close.

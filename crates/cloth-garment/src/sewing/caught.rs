@@ -13,7 +13,7 @@
 //! pass's border to the weld.
 
 use crate::garment::Garment;
-use cloth_core::{math::Vec3, Collider, LayerPass, Neighbours, Proximity, Simulation};
+use cloth_core::{math::Vec3, Collider, LayerPass, Neighbours, ParticlePath, Proximity, Simulation};
 use std::collections::BTreeMap;
 
 /// A layer of cloth found across a seam's pairs, and the panel let through it.
@@ -231,7 +231,7 @@ impl Catcher {
             .map(|p| &p.pass)
             .collect();
         let t = sim.time();
-        let near = |i: usize| match bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) {
+        let near = |i: usize| match bodies.sweep(&ParticlePath::still(t, x[i]), 0.0, REACH) {
             Proximity::Near(p) => Some(p),
             Proximity::Far { .. } => None,
         };
@@ -346,7 +346,7 @@ impl Catcher {
                 let Some(q) = nearest(x, &p.pass.side, i, CAUGHT) else {
                     continue;
                 };
-                let Proximity::Near(near) = bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) else {
+                let Proximity::Near(near) = bodies.sweep(&ParticlePath::still(t, x[i]), 0.0, REACH) else {
                     continue;
                 };
                 let dir = way * near.normal;

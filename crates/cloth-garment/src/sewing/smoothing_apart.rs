@@ -19,7 +19,7 @@
 //! layer, ends on the layer. The drape then goes on from there, its collision holding
 //! apart what no longer crosses.
 
-use cloth_core::{math::Vec3, ClothMesh, Collider, Neighbours, Proximity, SelfCrossings};
+use cloth_core::{math::Vec3, ClothMesh, Collider, Neighbours, ParticlePath, Proximity, SelfCrossings};
 
 /// What smoothing the cloth apart did.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -118,9 +118,9 @@ pub(super) fn kept_out(
     to: Vec3,
 ) -> Vec3 {
     let near = if passes_thin_parts {
-        bodies.sweep_past_thin_parts(t, from, t, &to, 0.0, 0.0)
+        bodies.sweep_past_thin_parts(&ParticlePath::new(t, *from, t, to), 0.0, 0.0)
     } else {
-        bodies.sweep(t, from, t, &to, 0.0, 0.0)
+        bodies.sweep(&ParticlePath::new(t, *from, t, to), 0.0, 0.0)
     };
     match near {
         Proximity::Near(p) if p.crossed || p.gap() < 0.0 => p.point + p.thickness * p.normal,

@@ -10,7 +10,7 @@
 
 use super::cut_off;
 use crate::garment::Welded;
-use cloth_core::{math::Vec3, Collider, Neighbours, Proximity, SelfCrossings};
+use cloth_core::{math::Vec3, Collider, Neighbours, ParticlePath, Proximity, SelfCrossings};
 
 /// What clearing the weld's crossings found and left (intersecting edge-triangle pairs),
 /// and how many parts of the cloth cut off by them were moved through as one (see
@@ -74,7 +74,7 @@ pub(super) fn clear(
         if pairs.is_empty() || round == rounds {
             break;
         }
-        let outward = |i: usize, fallback: Vec3| match bodies.sweep(t, &x[i], t, &x[i], 0.0, REACH) {
+        let outward = |i: usize, fallback: Vec3| match bodies.sweep(&ParticlePath::still(t, x[i]), 0.0, REACH) {
             Proximity::Near(p) => (p.normal, p.distance),
             Proximity::Far { .. } => (fallback, f64::INFINITY),
         };
