@@ -7,7 +7,7 @@ use cloth_core::{
     math::Vec3, Fabric, GridBuilder, Interrupt, Pin, SelfCollision, Simulation, SimulationBuilder,
     SolverSettings,
 };
-use cloth_garment::sewing::{drape_simulation, sew};
+use cloth_garment::sewing::{drape, drape_simulation, sew};
 use serde::Serialize;
 use std::ops::ControlFlow;
 use std::path::Path;
@@ -17,7 +17,7 @@ use std::time::Instant;
 /// One benchmark's figures.
 #[derive(Debug, Clone, Serialize)]
 pub struct BenchResult {
-    pub name: &'static str,
+    pub name: String,
     pub particles: usize,
     pub steps: usize,
     /// Wall time per step, ms.
@@ -29,31 +29,42 @@ pub struct BenchResult {
     pub median_self_collision_ms: f64,
 }
 
+/// A whole run to rest: each stage's steps and wall time.
+#[derive(Debug, Clone, Serialize)]
+pub struct ToRestResult {
+    pub name: &'static str,
+    pub particles: usize,
+    pub sewing_steps: u64,
+    pub sewing_seconds: f64,
+    pub drape_steps: u64,
+    pub drape_seconds: f64,
+    /// Both stages, s: from the placed panels to rest.
+    pub seconds: f64,
+}
+
+/// What `cloth bench` measures: steps of each scene, and the main job from placed panels
+/// to rest.
+#[derive(Debug, Clone, Serialize)]
+pub struct Benchmarks {
+    pub scenes: Vec<BenchResult>,
+    pub to_rest: Vec<ToRestResult>,
+}
+
 /// Runs the standard scenes for `steps` steps each: the source's 110 x 110 hanging sheet,
 /// a 60 x 60 sheet dropped on a sphere, and the basic dress draping on the default
 /// mannequin at about 12,000 particles (timed after it is sewn), with self-collision (as
-/// everywhere, by default) and without. `quick` runs them at about a tenth of the
-/// particles, for a smoke test.
-pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>, String> {
+/// everywhere, by default) and without; and the main job, the dress from its placed panels
+/// sewn and draped to rest as `cloth run` does (without writing outputs). `quick` runs them
+/// at about a tenth of the particles, for a smoke test.
+pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, String> {
     let e = |e: &dyn std::fmt::Display| e.to_string();
     let mut results = Vec::new();
 
     let n = if quick { 35 } else { 110 };
-    let mesh = GridBuilder::new(n, n)
-        .size(1.0, 1.0)
-        .axes(Vec3::x(), -Vec3::z())
-        .build()
-        .map_err(|x| e(&x))?;
-    let g = mesh.grid().expect("a grid");
-    let sim = SimulationBuilder::new(mesh, sheet_fabric())
-        .pin(Pin::fixed(g.index(0, 0)))
-        .pin(Pin::fixed(g.index(n - 1, 0)))
-        .build()
-        .map_err(|x| e(&x))?;
-    results.push(time_steps("hanging_sheet", sim, steps)?);
+    results.push(time_steps("hanging_sheet".into(), hanging_sheet(n)?, steps)?);
 
     let sim = sheet_on_sphere(if quick { 20 } else { 60 }).map_err(|x| e(&x))?;
-    results.push(time_steps("sheet_on_sphere", sim, steps)?);
+    results.push(time_steps("sheet_on_sphere".into(), sim, steps)?);
 
     // The main job's scene, so the benchmark drapes what `cloth run` does.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
@@ -75,6 +86,23 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
         |_, _, _| ControlFlow::Continue(()),
     )
     .map_err(|x| e(&x))?;
+    let draped = drape(
+        &sewn,
+        bodies.clone(),
+        &scene.drape_settings(),
+        &Interrupt::default(),
+        |_, _| ControlFlow::Continue(()),
+    )
+    .map_err(|x| e(&x))?;
+    let to_rest = vec![ToRestResult {
+        name: "dress_to_rest",
+        particles: draped.simulation.mesh().vertex_count(),
+        sewing_steps: sewn.report.steps,
+        sewing_seconds: sewn.report.seconds,
+        drape_steps: draped.outcome.steps,
+        drape_seconds: draped.seconds,
+        seconds: sewn.report.seconds + draped.seconds,
+    }];
     // Draped with self-collision and without, from the same sewn dress.
     for (name, self_collision) in [
         ("dress_drape", SelfCollision::default()),
@@ -85,9 +113,37 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>
             ..SolverSettings::default()
         };
         let sim = drape_simulation(&sewn, bodies.clone(), solver, 0.0).map_err(|x| e(&x))?;
-        results.push(time_steps(name, sim, steps)?);
+        results.push(time_steps(name.into(), sim, steps)?);
     }
-    Ok(results)
+    Ok(Benchmarks {
+        scenes: results,
+        to_rest,
+    })
+}
+
+/// The hanging sheet at each of `sides` particles a side, for how the cost of a step grows
+/// with the particles (at 55, 110, 224 and 447: from 3,025 to 199,809).
+pub fn scaling_benchmarks(steps: usize, sides: &[usize]) -> Result<Vec<BenchResult>, String> {
+    sides
+        .iter()
+        .map(|&n| time_steps(format!("hanging_sheet_{n}x{n}"), hanging_sheet(n)?, steps))
+        .collect()
+}
+
+/// The source's sheet: 1 m square, `n` x `n` particles, hanging from its two top corners.
+fn hanging_sheet(n: usize) -> Result<Simulation, String> {
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    let mesh = GridBuilder::new(n, n)
+        .size(1.0, 1.0)
+        .axes(Vec3::x(), -Vec3::z())
+        .build()
+        .map_err(|x| e(&x))?;
+    let g = mesh.grid().expect("a grid");
+    SimulationBuilder::new(mesh, sheet_fabric())
+        .pin(Pin::fixed(g.index(0, 0)))
+        .pin(Pin::fixed(g.index(n - 1, 0)))
+        .build()
+        .map_err(|x| e(&x))
 }
 
 /// The sheets' fabric: cotton-like, with a little stiffness damping and air drag.
@@ -116,7 +172,7 @@ fn sheet_on_sphere(n: usize) -> Result<Simulation, Box<dyn std::error::Error>> {
         .build()?)
 }
 
-fn time_steps(name: &'static str, mut sim: Simulation, steps: usize) -> Result<BenchResult, String> {
+fn time_steps(name: String, mut sim: Simulation, steps: usize) -> Result<BenchResult, String> {
     let (mut ms, mut cg) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
     let (mut contacts, mut self_ms) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
     for _ in 0..steps {

@@ -145,15 +145,23 @@ pub fn fabrics(name: Option<&str>) -> Result<(), Failure> {
 }
 
 /// `cloth bench`: one JSON object on stdout.
-pub fn bench(steps: usize, quick: bool) -> Result<(), Failure> {
+pub fn bench(steps: usize, quick: bool, scaling: bool) -> Result<(), Failure> {
     if steps == 0 {
         return Err(Failure::input("--steps must be at least 1"));
     }
     let results = cloth::bench::standard_benchmarks(steps, quick).map_err(Failure::run)?;
+    let sides: &[usize] = match (scaling, quick) {
+        (false, _) => &[],
+        (true, false) => &[55, 110, 224, 447],
+        (true, true) => &[12, 24, 48],
+    };
+    let scaling = cloth::bench::scaling_benchmarks(steps, sides).map_err(Failure::run)?;
     let json = serde_json::json!({
         "threads": cloth::bench::threads(),
         "quick": quick,
-        "scenes": results,
+        "scenes": results.scenes,
+        "to_rest": results.to_rest,
+        "scaling": scaling,
     });
     println!("{json}");
     Ok(())

@@ -53,6 +53,10 @@ enum Command {
         /// About a tenth of the particles: a smoke test, not a measurement.
         #[arg(long)]
         quick: bool,
+        /// Also the hanging sheet from 3,025 to 199,809 particles (55 to 447 a side), for
+        /// how a step's cost grows (with --quick, 12 to 48 a side).
+        #[arg(long)]
+        scaling: bool,
     },
     /// Drape many patterns on one body, each into OUT/<pattern name>/ with the outputs of
     /// `run`, and write OUT/summary.json and summary.md. Patterns finished by an earlier
@@ -125,7 +129,11 @@ fn main() -> ExitCode {
         }
         Command::Check { scene } => commands::check(&scene),
         Command::Fabrics { name } => commands::fabrics(name.as_deref()),
-        Command::Bench { steps, quick } => commands::bench(steps, quick),
+        Command::Bench {
+            steps,
+            quick,
+            scaling,
+        } => commands::bench(steps, quick, scaling),
         Command::Mannequin(args) => commands::mannequin(args.measurements(), &args.output),
         Command::Render(args) => render::render(&args),
         Command::Drape(args) => drape::drape(args),

@@ -519,7 +519,7 @@ fn a_cloth_from_a_mesh_file_runs_with_its_pins() {
 
 #[test]
 fn bench_prints_json_for_the_standard_scenes() {
-    let o = cloth(&["bench", "--quick", "--steps", "3"]);
+    let o = cloth(&["bench", "--quick", "--steps", "3", "--scaling"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let scenes = json["scenes"].as_array().unwrap();
@@ -538,6 +538,21 @@ fn bench_prints_json_for_the_standard_scenes() {
         assert!(s["particles"].as_u64().unwrap() > 100);
         assert!(s["median_ms_per_step"].as_f64().unwrap() > 0.0);
     }
+    // The main job from placed panels to rest: both stages ran, and their times add up.
+    let to_rest = &json["to_rest"][0];
+    assert_eq!(to_rest["name"], "dress_to_rest");
+    assert!(to_rest["sewing_steps"].as_u64().unwrap() > 0);
+    assert!(to_rest["drape_steps"].as_u64().unwrap() > 0);
+    let stages = to_rest["sewing_seconds"].as_f64().unwrap() + to_rest["drape_seconds"].as_f64().unwrap();
+    assert!((to_rest["seconds"].as_f64().unwrap() - stages).abs() < 1e-9);
+    // The quick scaling runs the sheet at 12, 24 and 48 a side.
+    let scaling: Vec<u64> = json["scaling"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["particles"].as_u64().unwrap())
+        .collect();
+    assert_eq!(scaling, [144, 576, 2304]);
     assert!(json["threads"].as_u64().unwrap() >= 1);
 }
 

@@ -50,7 +50,13 @@ impl Bodies {
 impl Bodies {
     /// The nearest entry or surface point over `parts` of every body (see
     /// [`Collider::sweep`]).
-    fn sweep_parts(&self, parts: Parts, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity {
+    fn sweep_parts(
+        &self,
+        parts: Parts,
+        path: &ParticlePath,
+        start_gap_lower_bound: f64,
+        reach: f64,
+    ) -> Proximity {
         let mut best: Option<(SurfacePoint, f64)> = None;
         for (k, body) in self.bodies.iter().enumerate() {
             let d = body.thickness();
@@ -92,7 +98,12 @@ impl Collider for Bodies {
         self.sweep_parts(Parts::All, path, start_gap_lower_bound, reach)
     }
 
-    fn sweep_past_thin_parts(&self, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity {
+    fn sweep_past_thin_parts(
+        &self,
+        path: &ParticlePath,
+        start_gap_lower_bound: f64,
+        reach: f64,
+    ) -> Proximity {
         self.sweep_parts(Parts::Thick, path, start_gap_lower_bound, reach)
     }
 

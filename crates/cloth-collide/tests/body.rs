@@ -121,10 +121,16 @@ fn cloth_passing_thin_parts_meets_only_the_thick_ones() {
     assert!((thin - 0.5).abs() < 1e-12, "{thin}");
     // A path through the hand crosses it, unless it passes thin parts.
     let (a, b) = (Vec3::new(0.45, 0.0, 0.0), Vec3::new(0.55, 0.0, 0.0));
-    assert!(is_near(bodies.sweep(&ParticlePath::new(0.0, a, 0.0, b), 0.0, 0.01)));
-    assert!(!is_near(
-        bodies.sweep_past_thin_parts(&ParticlePath::new(0.0, a, 0.0, b), 0.0, 0.01)
-    ));
+    assert!(is_near(bodies.sweep(
+        &ParticlePath::new(0.0, a, 0.0, b),
+        0.0,
+        0.01
+    )));
+    assert!(!is_near(bodies.sweep_past_thin_parts(
+        &ParticlePath::new(0.0, a, 0.0, b),
+        0.0,
+        0.01
+    )));
     // A path into the trunk crosses it either way.
     let (a, b) = (Vec3::new(0.25, 0.0, 0.0), Vec3::new(0.15, 0.0, 0.0));
     for p in [

@@ -105,7 +105,12 @@ pub trait Collider: Send + Sync + std::fmt::Debug {
     /// As [`Collider::sweep`], for a particle passing through the bodies' thin parts
     /// (hands, forearms: where a body is thinner under its surface than a hand is wide),
     /// which are not there for it; a collider without thin parts answers as `sweep` does.
-    fn sweep_past_thin_parts(&self, path: &ParticlePath, start_gap_lower_bound: f64, reach: f64) -> Proximity {
+    fn sweep_past_thin_parts(
+        &self,
+        path: &ParticlePath,
+        start_gap_lower_bound: f64,
+        reach: f64,
+    ) -> Proximity {
         self.sweep(path, start_gap_lower_bound, reach)
     }
 

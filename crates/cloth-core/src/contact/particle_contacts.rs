@@ -240,7 +240,13 @@ impl ParticleContacts {
     pub fn refresh(&mut self, collider: &dyn Collider, t: f64, x: &[Vec3], par: Parallelism) {
         let reach = self.reach;
         let query = |(s, xi): (&mut ParticleState, &Vec3)| {
-            s.proximity = sweep_for(collider, s.passing, &ParticlePath::still(t, *xi), f64::INFINITY, reach);
+            s.proximity = sweep_for(
+                collider,
+                s.passing,
+                &ParticlePath::still(t, *xi),
+                f64::INFINITY,
+                reach,
+            );
             s.mode = ContactMode::Free;
             s.released = false;
             s.demand_known = false;
@@ -500,7 +506,13 @@ impl ParticleContacts {
                 };
                 return SweepCounts::default();
             }
-            let mut proximity = sweep_for(collider, s.passing, &ParticlePath::new(t0, *x0, t1, *x1), start_bound, reach);
+            let mut proximity = sweep_for(
+                collider,
+                s.passing,
+                &ParticlePath::new(t0, *x0, t1, *x1),
+                start_bound,
+                reach,
+            );
             let mut counts = SweepCounts::default();
             if let Proximity::Near(p) = &mut proximity {
                 if p.crossed || p.distance < 0.0 {
@@ -508,7 +520,13 @@ impl ParticleContacts {
                     counts.crossings = p.crossed as usize;
                     let passing = s.passing;
                     let query = |a: &Vec3, b: &Vec3| {
-                        sweep_for(collider, passing, &ParticlePath::new(t1, *a, t1, *b), f64::NEG_INFINITY, reach)
+                        sweep_for(
+                            collider,
+                            passing,
+                            &ParticlePath::new(t1, *a, t1, *b),
+                            f64::NEG_INFINITY,
+                            reach,
+                        )
                     };
                     let (out, other) = out_of_pinch(p, query);
                     *x1 = out;
@@ -584,7 +602,13 @@ impl ParticleContacts {
 
 /// The collider's sweep along `path` for a particle that is `passing` the bodies' thin
 /// parts or not.
-fn sweep_for(collider: &dyn Collider, passing: bool, path: &ParticlePath, start_bound: f64, reach: f64) -> Proximity {
+fn sweep_for(
+    collider: &dyn Collider,
+    passing: bool,
+    path: &ParticlePath,
+    start_bound: f64,
+    reach: f64,
+) -> Proximity {
     match passing {
         true => collider.sweep_past_thin_parts(path, start_bound, reach),
         false => collider.sweep(path, start_bound, reach),

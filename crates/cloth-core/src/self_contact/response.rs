@@ -180,7 +180,13 @@ impl SelfContacts {
 
     /// The impacts on the paths of `end`: of every pair (`full`), or of the pairs
     /// with a dirty particle; with `closing`, pairs ending too close too.
-    fn find_impacts(&mut self, end: &StepEnd<'_>, full: bool, closing: bool, stop: &(impl Fn() -> bool + Sync)) {
+    fn find_impacts(
+        &mut self,
+        end: &StepEnd<'_>,
+        full: bool,
+        closing: bool,
+        stop: &(impl Fn() -> bool + Sync),
+    ) {
         let (x0, x1, par): (&[Vec3], &[Vec3], _) = (end.x0, end.x1, end.par);
         let topo = &self.topology;
         let touch = self.touch;

@@ -74,7 +74,8 @@ pub(super) fn clear(
         if pairs.is_empty() || round == rounds {
             break;
         }
-        let outward = |i: usize, fallback: Vec3| match bodies.sweep(&ParticlePath::still(t, x[i]), 0.0, REACH) {
+        let outward = |i: usize, fallback: Vec3| match bodies.sweep(&ParticlePath::still(t, x[i]), 0.0, REACH)
+        {
             Proximity::Near(p) => (p.normal, p.distance),
             Proximity::Far { .. } => (fallback, f64::INFINITY),
         };
