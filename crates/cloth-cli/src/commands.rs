@@ -150,12 +150,10 @@ pub fn bench(steps: usize, quick: bool, scaling: bool) -> Result<(), Failure> {
         return Err(Failure::input("--steps must be at least 1"));
     }
     let results = cloth::bench::standard_benchmarks(steps, quick).map_err(Failure::run)?;
-    let sides: &[usize] = match (scaling, quick) {
-        (false, _) => &[],
-        (true, false) => &[55, 110, 224, 447],
-        (true, true) => &[12, 24, 48],
+    let scaling = match scaling {
+        true => cloth::bench::scaling_benchmarks(steps, quick).map_err(Failure::run)?,
+        false => Vec::new(),
     };
-    let scaling = cloth::bench::scaling_benchmarks(steps, sides).map_err(Failure::run)?;
     let json = serde_json::json!({
         "threads": cloth::bench::threads(),
         "quick": quick,

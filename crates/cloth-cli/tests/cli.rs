@@ -538,13 +538,13 @@ fn bench_prints_json_for_the_standard_scenes() {
         assert!(s["particles"].as_u64().unwrap() > 100);
         assert!(s["median_ms_per_step"].as_f64().unwrap() > 0.0);
     }
-    // The main job from placed panels to rest: both stages ran, and their times add up.
+    // The main job from placed panels to rest: both stages ran and took time.
     let to_rest = &json["to_rest"][0];
     assert_eq!(to_rest["name"], "dress_to_rest");
-    assert!(to_rest["sewing_steps"].as_u64().unwrap() > 0);
-    assert!(to_rest["drape_steps"].as_u64().unwrap() > 0);
-    let stages = to_rest["sewing_seconds"].as_f64().unwrap() + to_rest["drape_seconds"].as_f64().unwrap();
-    assert!((to_rest["seconds"].as_f64().unwrap() - stages).abs() < 1e-9);
+    for stage in ["sewing", "drape"] {
+        assert!(to_rest[format!("{stage}_steps")].as_u64().unwrap() > 0);
+        assert!(to_rest[format!("{stage}_seconds")].as_f64().unwrap() > 0.0);
+    }
     // The quick scaling runs the sheet at 12, 24 and 48 a side.
     let scaling: Vec<u64> = json["scaling"]
         .as_array()
