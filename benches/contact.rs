@@ -10,7 +10,7 @@
 //!   release passes and the end-of-step sweep included. Target: 25 ms median on 2 cores.
 
 use cloth::collide::{Bodies, Body, TriSurface};
-use cloth::{math::Vec3, Collider, Proximity};
+use cloth::{math::Vec3, Collider, ParticlePath, Proximity};
 use cloth_fixtures::SphereDrop;
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::prelude::*;
@@ -43,7 +43,11 @@ fn count_near(bodies: &Bodies, from: &[Vec3], to: &[Vec3]) -> usize {
         .zip(to)
         .filter(|(a, b)| {
             matches!(
-                bodies.sweep(0.0, a, 1.0 / 60.0, b, f64::INFINITY, 4.0 * THICKNESS),
+                bodies.sweep(
+                    &ParticlePath::new(0.0, **a, 1.0 / 60.0, **b),
+                    f64::INFINITY,
+                    4.0 * THICKNESS
+                ),
                 Proximity::Near(_)
             )
         })
