@@ -296,6 +296,7 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
         weft: rigidity.weft.max(1e-6 * scale),
         bias: rigidity.bias,
     };
+    let relaxation = Relaxation::new(mesh, &hinges, &index, free, &ring)?;
     let target = [0.5 * rigidity.warp / scale, 0.5 * rigidity.weft / scale];
     let mut kappa = [1.0, 1.0];
     for _ in 0..ROUNDS {
@@ -308,7 +309,7 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
             .iter()
             .map(|h| h.ratio * scaled.along_fold(h.fold.0, h.fold.1))
             .collect();
-        let energy = relaxed_energies(mesh, &hinges, &k, &index, free, &ring)?;
+        let energy = relaxation.energies(&k)?;
         let mut change: f64 = 0.0;
         for d in 0..2 {
             if target[d] > 0.0 {
@@ -324,116 +325,186 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
     kappa.iter().all(|k| k.is_finite() && *k > 0.0).then_some(kappa)
 }
 
-/// Energy per unit area of the relaxed unit bends across the warp and across the weft,
-/// with hinge stiffnesses `k`.
-fn relaxed_energies(
-    mesh: &ClothMesh,
+/// The linear system of a flat mesh's relaxation under imposed bends, set up once for
+/// the rounds of a calibration, which change only the hinges' stiffnesses: the pattern
+/// of the fluctuation's stiffness (its lower triangle) and its symbolic Cholesky factor,
+/// and each counted triangle's hinges.
+struct Relaxation<'a> {
+    hinges: &'a [FlatHinge],
+    index: &'a [usize],
+    free: usize,
+    pattern: faer::sparse::SymbolicSparseColMat<usize>,
+    order: faer::sparse::Argsort<usize>,
+    symbolic: faer::sparse::linalg::solvers::SymbolicLlt<usize>,
+    /// Per triangle four rings in whose edges are all hinges: its rest area and its hinges.
+    counted: Vec<(f64, [usize; 3])>,
+}
+
+impl<'a> Relaxation<'a> {
+    fn new(
+        mesh: &ClothMesh,
+        hinges: &'a [FlatHinge],
+        index: &'a [usize],
+        free: usize,
+        ring: &[usize],
+    ) -> Option<Self> {
+        use faer::sparse::linalg::solvers::SymbolicLlt;
+        use faer::sparse::{Pair, SymbolicSparseColMat};
+        let mut pairs = Vec::new();
+        for_each_entry(hinges, index, free, |row, col, _| pairs.push(Pair::new(row, col)));
+        let (pattern, order) = SymbolicSparseColMat::try_new_from_indices(free, free, &pairs).ok()?;
+        let symbolic = SymbolicLlt::try_new(pattern.as_ref(), faer::Side::Lower).ok()?;
+        let of_edge: std::collections::HashMap<[usize; 2], usize> =
+            hinges.iter().enumerate().map(|(k, h)| (h.edge, k)).collect();
+        let counted = mesh
+            .triangles()
+            .iter()
+            .enumerate()
+            .filter(|(_, tri)| tri.iter().all(|&i| ring[i] >= COUNTED_RING))
+            .filter_map(|(t, tri)| {
+                let hinge = |c: usize| {
+                    let (p, q) = (tri[c], tri[(c + 1) % 3]);
+                    of_edge.get(&if p < q { [p, q] } else { [q, p] }).copied()
+                };
+                Some((mesh.rest_area(t), [hinge(0)?, hinge(1)?, hinge(2)?]))
+            })
+            .collect();
+        Some(Self {
+            hinges,
+            index,
+            free,
+            pattern,
+            order,
+            symbolic,
+            counted,
+        })
+    }
+
+    /// Energy per unit area of the relaxed unit bends across the warp and across the
+    /// weft, with hinge stiffnesses `k`.
+    fn energies(&self, k: &[f64]) -> Option<[f64; 2]> {
+        use faer::prelude::*;
+        use faer::sparse::linalg::solvers::Llt;
+        use faer::sparse::SparseColMat;
+
+        let (hinges, index, free) = (self.hinges, self.index, self.free);
+        let mut b = Mat::<f64>::zeros(free, 3);
+        let mut d = nalgebra::Matrix3::<f64>::zeros();
+        let mut diag_max: f64 = 0.0;
+        let mut diag = vec![0.0; free];
+        for (h, &kh) in hinges.iter().zip(k) {
+            d += kh * h.modes * h.modes.transpose();
+            for a in 0..4 {
+                let ia = index[h.ids[a]];
+                if ia == usize::MAX {
+                    continue;
+                }
+                for q in 0..3 {
+                    b[(ia, q)] += kh * h.dz[a] * h.modes[q];
+                }
+                diag[ia] += kh * h.dz[a] * h.dz[a];
+            }
+        }
+        for v in &diag {
+            diag_max = diag_max.max(*v);
+        }
+        let mut values = Vec::with_capacity(self.order_len());
+        for_each_entry(hinges, index, free, |row, col, term| {
+            values.push(match term {
+                Some((hinge, a, c)) => k[hinge] * hinges[hinge].dz[a] * hinges[hinge].dz[c],
+                None => {
+                    debug_assert_eq!(row, col);
+                    1e-12 * diag_max
+                }
+            })
+        });
+        let h = SparseColMat::new_from_argsort(self.pattern.clone(), &self.order, &values).ok()?;
+        let factor = Llt::try_new_with_symbolic(self.symbolic.clone(), h.as_ref(), faer::Side::Lower).ok()?;
+        let x = factor.solve(&b);
+        // Schur complement of the three modes once the fluctuation has relaxed.
+        let mut schur = d;
+        for i in 0..free {
+            for p in 0..3 {
+                for q in 0..3 {
+                    schur[(p, q)] -= b[(i, p)] * x[(i, q)];
+                }
+            }
+        }
+        let mut out = [0.0; 2];
+        let mut response = vec![0.0; hinges.len()];
+        for (imposed, sideways) in [(0usize, 1usize), (1, 0)] {
+            // Free amplitudes of the sideways curvature and the twist.
+            let f = [sideways, 2];
+            let sff = nalgebra::Matrix2::new(
+                schur[(f[0], f[0])],
+                schur[(f[0], f[1])],
+                schur[(f[1], f[0])],
+                schur[(f[1], f[1])],
+            );
+            let sfi = nalgebra::Vector2::new(schur[(f[0], imposed)], schur[(f[1], imposed)]);
+            let alpha = -sff.lu().solve(&sfi)?;
+            let mut amp = nalgebra::Vector3::<f64>::zeros();
+            amp[imposed] = 1.0;
+            amp[f[0]] = alpha[0];
+            amp[f[1]] = alpha[1];
+            // The fluctuation w = -H^-1 sum_q amp_q b_q.
+            let wz = |i: usize| -> f64 {
+                let r = index[i];
+                if r == usize::MAX {
+                    0.0
+                } else {
+                    -(0..3).map(|q| amp[q] * x[(r, q)]).sum::<f64>()
+                }
+            };
+            for ((h, &kh), e) in hinges.iter().zip(k).zip(&mut response) {
+                let theta = h.modes.dot(&amp) + (0..4).map(|c| h.dz[c] * wz(h.ids[c])).sum::<f64>();
+                *e = 0.5 * kh * theta * theta;
+            }
+            let (mut energy, mut covered) = (0.0, 0.0);
+            for (area, ids) in &self.counted {
+                covered += area;
+                energy += 0.5 * ids.iter().map(|&k| response[k]).sum::<f64>();
+            }
+            if !(covered > 0.0 && energy > 0.0) {
+                return None;
+            }
+            out[imposed] = energy / covered;
+        }
+        Some(out)
+    }
+
+    fn order_len(&self) -> usize {
+        self.pattern.compute_nnz()
+    }
+}
+
+/// Every entry of the relaxation's stiffness in the lower triangle, in one fixed order:
+/// `f(row, col, Some((hinge, a, c)))` for hinge `hinge`'s term between its particles `a`
+/// and `c` (repeated entries are summed), then `f(i, i, None)` for each free particle's
+/// regularisation.
+fn for_each_entry(
     hinges: &[FlatHinge],
-    k: &[f64],
     index: &[usize],
     free: usize,
-    ring: &[usize],
-) -> Option<[f64; 2]> {
-    use faer::prelude::*;
-    use faer::sparse::{SparseColMat, Triplet};
-    use std::collections::HashMap;
-
-    let mut entries: HashMap<(usize, usize), f64> = HashMap::new();
-    let mut b = Mat::<f64>::zeros(free, 3);
-    let mut d = nalgebra::Matrix3::<f64>::zeros();
-    for (h, &kh) in hinges.iter().zip(k) {
-        d += kh * h.modes * h.modes.transpose();
+    mut f: impl FnMut(usize, usize, Option<(usize, usize, usize)>),
+) {
+    for (k, h) in hinges.iter().enumerate() {
         for a in 0..4 {
             let ia = index[h.ids[a]];
             if ia == usize::MAX {
                 continue;
             }
-            for q in 0..3 {
-                b[(ia, q)] += kh * h.dz[a] * h.modes[q];
-            }
             for c in 0..4 {
                 let ic = index[h.ids[c]];
-                if ic != usize::MAX {
-                    *entries.entry((ia, ic)).or_default() += kh * h.dz[a] * h.dz[c];
+                if ic != usize::MAX && ia >= ic {
+                    f(ia, ic, Some((k, a, c)));
                 }
             }
         }
     }
-    let diag_max = entries
-        .iter()
-        .filter(|((a, c), _)| a == c)
-        .map(|(_, v)| *v)
-        .fold(0.0, f64::max);
     for i in 0..free {
-        *entries.entry((i, i)).or_default() += 1e-12 * diag_max;
+        f(i, i, None);
     }
-    let triplets: Vec<_> = entries
-        .into_iter()
-        .map(|((r, c), v)| Triplet::new(r, c, v))
-        .collect();
-    let h = SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &triplets).ok()?;
-    let x = h.sp_cholesky(faer::Side::Lower).ok()?.solve(&b);
-    // Schur complement of the three modes once the fluctuation has relaxed.
-    let mut schur = d;
-    for i in 0..free {
-        for p in 0..3 {
-            for q in 0..3 {
-                schur[(p, q)] -= b[(i, p)] * x[(i, q)];
-            }
-        }
-    }
-    let mut out = [0.0; 2];
-    for (imposed, sideways) in [(0usize, 1usize), (1, 0)] {
-        // Free amplitudes of the sideways curvature and the twist.
-        let f = [sideways, 2];
-        let sff = nalgebra::Matrix2::new(
-            schur[(f[0], f[0])],
-            schur[(f[0], f[1])],
-            schur[(f[1], f[0])],
-            schur[(f[1], f[1])],
-        );
-        let sfi = nalgebra::Vector2::new(schur[(f[0], imposed)], schur[(f[1], imposed)]);
-        let alpha = -sff.lu().solve(&sfi)?;
-        let mut amp = nalgebra::Vector3::<f64>::zeros();
-        amp[imposed] = 1.0;
-        amp[f[0]] = alpha[0];
-        amp[f[1]] = alpha[1];
-        // The fluctuation w = -H^-1 sum_q amp_q b_q.
-        let wz = |i: usize| -> f64 {
-            let r = index[i];
-            if r == usize::MAX {
-                0.0
-            } else {
-                -(0..3).map(|q| amp[q] * x[(r, q)]).sum::<f64>()
-            }
-        };
-        let mut response = HashMap::with_capacity(hinges.len());
-        for (h, &kh) in hinges.iter().zip(k) {
-            let theta = h.modes.dot(&amp) + (0..4).map(|c| h.dz[c] * wz(h.ids[c])).sum::<f64>();
-            response.insert(h.edge, 0.5 * kh * theta * theta);
-        }
-        let (mut energy, mut covered) = (0.0, 0.0);
-        for (t, tri) in mesh.triangles().iter().enumerate() {
-            if tri.iter().any(|&i| ring[i] < COUNTED_RING) {
-                continue;
-            }
-            let shares: Option<Vec<f64>> = (0..3)
-                .map(|c| {
-                    let (p, q) = (tri[c], tri[(c + 1) % 3]);
-                    response.get(&if p < q { [p, q] } else { [q, p] }).copied()
-                })
-                .collect();
-            if let Some(shares) = shares {
-                covered += mesh.rest_area(t);
-                energy += 0.5 * shares.iter().sum::<f64>();
-            }
-        }
-        if !(covered > 0.0 && energy > 0.0) {
-            return None;
-        }
-        out[imposed] = energy / covered;
-    }
-    Some(out)
 }
 
 /// Edge-graph distance of every vertex from the boundary; `None` for a closed mesh.
