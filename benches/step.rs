@@ -3,6 +3,7 @@
 //! implicit Euler at h = 1/60 s. Target: one implicit step in at most 20 ms median on
 //! 2 cores (the source needed 8 to 12 s). Run with `cargo bench --bench step`.
 
+use cloth::linalg::{Filter, Multigrid};
 use cloth::parallelism::Parallelism;
 use cloth::{math::Vec3, Fabric, GridBuilder, Pin, Simulation, SimulationBuilder};
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -42,6 +43,21 @@ fn benches(c: &mut Criterion) {
     let mut y = vec![Vec3::zeros(); a.n()];
     group.bench_function("matrix_vector_product", |b| {
         b.iter(|| a.mul(black_box(&x), &mut y, Parallelism::Rayon))
+    });
+
+    // The preconditioner on its own: its setup (once per solve, for a new matrix) and one
+    // V-cycle (once per CG iteration), on the same matrix with no constraint.
+    let filter = Filter::new(a.n(), 0);
+    let mut multigrid = Multigrid::new(&a);
+    group.bench_function("multigrid_setup", |b| {
+        b.iter(|| {
+            multigrid
+                .build(&a, &filter, Parallelism::Rayon)
+                .expect("definite")
+        })
+    });
+    group.bench_function("multigrid_cycle", |b| {
+        b.iter(|| multigrid.apply(&a, &filter, black_box(&x), &mut y, Parallelism::Rayon))
     });
 
     // Consecutive steps of the falling sheet: the median is a typical step of the run.
