@@ -49,7 +49,7 @@ pub struct Benchmarks {
 }
 
 /// Runs the standard scenes for `steps` steps each: the source's 110 x 110 hanging sheet,
-/// a 60 x 60 sheet dropped on a sphere, and the basic dress draping on the default
+/// a 60 x 60 sheet dropped on a sphere, a 110 x 110 one landed on it, and the basic dress draping on the default
 /// mannequin at about 12,000 particles (timed after it is sewn), with self-collision (as
 /// everywhere, by default) and without; and the main job, the dress from its placed panels
 /// sewn and draped to rest as `cloth run` does (without writing outputs). `quick` runs them
@@ -63,6 +63,15 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, Stri
 
     let sim = sheet_on_sphere(if quick { 20 } else { 60 }).map_err(|x| e(&x))?;
     results.push(time_steps("sheet_on_sphere".into(), sim, steps)?);
+
+    // The source's model size landed on the sphere: steps with the sheet lying on it, where
+    // contacts, friction and the cloth's collision with itself all work.
+    let n = if quick { 35 } else { 110 };
+    let mut sim = sheet_on_sphere(n).map_err(|x| e(&x))?;
+    for _ in 0..LANDING_STEPS {
+        sim.step().map_err(|x| format!("sphere_drop: {x}"))?;
+    }
+    results.push(time_steps(format!("sphere_drop_{n}x{n}"), sim, steps)?);
 
     // The main job's scene, so the benchmark drapes what `cloth run` does.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
@@ -117,6 +126,10 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, Stri
         to_rest,
     })
 }
+
+/// Steps of the sheet dropped on the sphere before its steps are timed: by then it lies
+/// on the sphere, its sides still swinging down.
+const LANDING_STEPS: usize = 40;
 
 /// The hanging sheet at 55, 110, 224 and 447 particles a side (3,025 to 199,809), for how
 /// the cost of a step grows with the particles; `quick` at 12, 24 and 48.

@@ -529,6 +529,7 @@ fn bench_prints_json_for_the_standard_scenes() {
         [
             "hanging_sheet",
             "sheet_on_sphere",
+            "sphere_drop_35x35",
             "dress_drape",
             "dress_drape_without_self_collision"
         ]
