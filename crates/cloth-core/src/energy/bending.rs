@@ -327,14 +327,15 @@ fn relaxed_calibration(mesh: &ClothMesh, rigidity: &BendingRigidity) -> Option<[
 
 /// The linear system of a flat mesh's relaxation under imposed bends, set up once for
 /// the rounds of a calibration, which change only the hinges' stiffnesses: the pattern
-/// of the fluctuation's stiffness (its lower triangle) and its symbolic Cholesky factor,
-/// and each counted triangle's hinges.
+/// of the fluctuation's stiffness (its lower triangle), where each term goes in it, and
+/// its symbolic Cholesky factor; and each counted triangle's hinges.
 struct Relaxation<'a> {
     hinges: &'a [FlatHinge],
     index: &'a [usize],
     free: usize,
     pattern: faer::sparse::SymbolicSparseColMat<usize>,
-    order: faer::sparse::Argsort<usize>,
+    /// Where each of [`for_each_entry`]'s entries is stored in the pattern's values.
+    slots: Vec<usize>,
     symbolic: faer::sparse::linalg::solvers::SymbolicLlt<usize>,
     /// Per triangle four rings in whose edges are all hinges: its rest area and its hinges.
     counted: Vec<(f64, [usize; 3])>,
@@ -349,10 +350,25 @@ impl<'a> Relaxation<'a> {
         ring: &[usize],
     ) -> Option<Self> {
         use faer::sparse::linalg::solvers::SymbolicLlt;
-        use faer::sparse::{Pair, SymbolicSparseColMat};
-        let mut pairs = Vec::new();
-        for_each_entry(hinges, index, free, |row, col, _| pairs.push(Pair::new(row, col)));
-        let (pattern, order) = SymbolicSparseColMat::try_new_from_indices(free, free, &pairs).ok()?;
+        use faer::sparse::SymbolicSparseColMat;
+        let mut entries = Vec::new();
+        for_each_entry(hinges, index, free, |row, col, _| entries.push((col, row)));
+        let mut unique = entries.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        let mut col_ptr = vec![0usize; free + 1];
+        for &(col, _) in &unique {
+            col_ptr[col + 1] += 1;
+        }
+        for c in 0..free {
+            col_ptr[c + 1] += col_ptr[c];
+        }
+        let row_idx: Vec<usize> = unique.iter().map(|&(_, row)| row).collect();
+        let slots = entries
+            .iter()
+            .map(|e| unique.binary_search(e).expect("every entry is in the pattern"))
+            .collect();
+        let pattern = SymbolicSparseColMat::new_checked(free, free, col_ptr, None, row_idx);
         let symbolic = SymbolicLlt::try_new(pattern.as_ref(), faer::Side::Lower).ok()?;
         let of_edge: std::collections::HashMap<[usize; 2], usize> =
             hinges.iter().enumerate().map(|(k, h)| (h.edge, k)).collect();
@@ -374,7 +390,7 @@ impl<'a> Relaxation<'a> {
             index,
             free,
             pattern,
-            order,
+            slots,
             symbolic,
             counted,
         })
@@ -385,7 +401,7 @@ impl<'a> Relaxation<'a> {
     fn energies(&self, k: &[f64]) -> Option<[f64; 2]> {
         use faer::prelude::*;
         use faer::sparse::linalg::solvers::Llt;
-        use faer::sparse::SparseColMat;
+        use faer::sparse::SparseColMatRef;
 
         let (hinges, index, free) = (self.hinges, self.index, self.free);
         let mut b = Mat::<f64>::zeros(free, 3);
@@ -408,18 +424,21 @@ impl<'a> Relaxation<'a> {
         for v in &diag {
             diag_max = diag_max.max(*v);
         }
-        let mut values = Vec::with_capacity(self.order_len());
+        // Each entry summed in the entries' order, the same for every run and thread count.
+        let mut values = vec![0.0; self.pattern.row_idx().len()];
+        let mut slots = self.slots.iter();
         for_each_entry(hinges, index, free, |row, col, term| {
-            values.push(match term {
+            let slot = *slots.next().expect("a slot per entry");
+            values[slot] += match term {
                 Some((hinge, a, c)) => k[hinge] * hinges[hinge].dz[a] * hinges[hinge].dz[c],
                 None => {
                     debug_assert_eq!(row, col);
                     1e-12 * diag_max
                 }
-            })
+            }
         });
-        let h = SparseColMat::new_from_argsort(self.pattern.clone(), &self.order, &values).ok()?;
-        let factor = Llt::try_new_with_symbolic(self.symbolic.clone(), h.as_ref(), faer::Side::Lower).ok()?;
+        let h = SparseColMatRef::new(self.pattern.as_ref(), &values);
+        let factor = Llt::try_new_with_symbolic(self.symbolic.clone(), h, faer::Side::Lower).ok()?;
         let x = factor.solve(&b);
         // Schur complement of the three modes once the fluctuation has relaxed.
         let mut schur = d;
@@ -471,10 +490,6 @@ impl<'a> Relaxation<'a> {
             out[imposed] = energy / covered;
         }
         Some(out)
-    }
-
-    fn order_len(&self) -> usize {
-        self.pattern.compute_nnz()
     }
 }
 
