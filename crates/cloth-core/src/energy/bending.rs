@@ -334,8 +334,11 @@ struct Relaxation<'a> {
     index: &'a [usize],
     free: usize,
     pattern: faer::sparse::SymbolicSparseColMat<usize>,
-    /// Where each of [`for_each_entry`]'s entries is stored in the pattern's values.
-    slots: Vec<usize>,
+    /// Each hinge term of the lower triangle, in the hinges' order: the slot of the
+    /// pattern's values it adds to, the hinge, and the hinge's two particles.
+    terms: Vec<(usize, usize, usize, usize)>,
+    /// Each free particle's diagonal slot.
+    diagonal: Vec<usize>,
     symbolic: faer::sparse::linalg::solvers::SymbolicLlt<usize>,
     /// Per triangle four rings in whose edges are all hinges: its rest area and its hinges.
     counted: Vec<(f64, [usize; 3])>,
@@ -351,9 +354,25 @@ impl<'a> Relaxation<'a> {
     ) -> Option<Self> {
         use faer::sparse::linalg::solvers::SymbolicLlt;
         use faer::sparse::SymbolicSparseColMat;
+        // (row, col, hinge, a, c) for hinge `hinge`'s term between its particles `a` and `c`.
         let mut entries = Vec::new();
-        for_each_entry(hinges, index, free, |row, col, _| entries.push((col, row)));
-        let mut unique = entries.clone();
+        for (k, h) in hinges.iter().enumerate() {
+            for a in 0..4 {
+                let ia = index[h.ids[a]];
+                for c in 0..4 {
+                    let ic = index[h.ids[c]];
+                    if ia != usize::MAX && ic != usize::MAX && ia >= ic {
+                        entries.push((ia, ic, k, a, c));
+                    }
+                }
+            }
+        }
+        // By columns, every diagonal block in it.
+        let mut unique: Vec<(usize, usize)> = entries
+            .iter()
+            .map(|e| (e.1, e.0))
+            .chain((0..free).map(|i| (i, i)))
+            .collect();
         unique.sort_unstable();
         unique.dedup();
         let mut col_ptr = vec![0usize; free + 1];
@@ -364,10 +383,12 @@ impl<'a> Relaxation<'a> {
             col_ptr[c + 1] += col_ptr[c];
         }
         let row_idx: Vec<usize> = unique.iter().map(|&(_, row)| row).collect();
-        let slots = entries
+        let slot = |col: usize, row: usize| unique.binary_search(&(col, row)).expect("in the pattern");
+        let terms = entries
             .iter()
-            .map(|e| unique.binary_search(e).expect("every entry is in the pattern"))
+            .map(|&(row, col, k, a, c)| (slot(col, row), k, a, c))
             .collect();
+        let diagonal = (0..free).map(|i| slot(i, i)).collect();
         let pattern = SymbolicSparseColMat::new_checked(free, free, col_ptr, None, row_idx);
         let symbolic = SymbolicLlt::try_new(pattern.as_ref(), faer::Side::Lower).ok()?;
         let of_edge: std::collections::HashMap<[usize; 2], usize> =
@@ -390,7 +411,8 @@ impl<'a> Relaxation<'a> {
             index,
             free,
             pattern,
-            slots,
+            terms,
+            diagonal,
             symbolic,
             counted,
         })
@@ -406,8 +428,6 @@ impl<'a> Relaxation<'a> {
         let (hinges, index, free) = (self.hinges, self.index, self.free);
         let mut b = Mat::<f64>::zeros(free, 3);
         let mut d = nalgebra::Matrix3::<f64>::zeros();
-        let mut diag_max: f64 = 0.0;
-        let mut diag = vec![0.0; free];
         for (h, &kh) in hinges.iter().zip(k) {
             d += kh * h.modes * h.modes.transpose();
             for a in 0..4 {
@@ -418,25 +438,18 @@ impl<'a> Relaxation<'a> {
                 for q in 0..3 {
                     b[(ia, q)] += kh * h.dz[a] * h.modes[q];
                 }
-                diag[ia] += kh * h.dz[a] * h.dz[a];
             }
         }
-        for v in &diag {
-            diag_max = diag_max.max(*v);
-        }
-        // Each entry summed in the entries' order, the same for every run and thread count.
+        // Each term added in the hinges' order, the same for every run.
         let mut values = vec![0.0; self.pattern.row_idx().len()];
-        let mut slots = self.slots.iter();
-        for_each_entry(hinges, index, free, |row, col, term| {
-            let slot = *slots.next().expect("a slot per entry");
-            values[slot] += match term {
-                Some((hinge, a, c)) => k[hinge] * hinges[hinge].dz[a] * hinges[hinge].dz[c],
-                None => {
-                    debug_assert_eq!(row, col);
-                    1e-12 * diag_max
-                }
-            }
-        });
+        for &(slot, hinge, a, c) in &self.terms {
+            values[slot] += k[hinge] * hinges[hinge].dz[a] * hinges[hinge].dz[c];
+        }
+        // A free particle that no term reaches would leave the matrix singular.
+        let diag_max = self.diagonal.iter().map(|&s| values[s]).fold(0.0, f64::max);
+        for &s in &self.diagonal {
+            values[s] += 1e-12 * diag_max;
+        }
         let h = SparseColMatRef::new(self.pattern.as_ref(), &values);
         let factor = Llt::try_new_with_symbolic(self.symbolic.clone(), h, faer::Side::Lower).ok()?;
         let x = factor.solve(&b);
@@ -490,35 +503,6 @@ impl<'a> Relaxation<'a> {
             out[imposed] = energy / covered;
         }
         Some(out)
-    }
-}
-
-/// Every entry of the relaxation's stiffness in the lower triangle, in one fixed order:
-/// `f(row, col, Some((hinge, a, c)))` for hinge `hinge`'s term between its particles `a`
-/// and `c` (repeated entries are summed), then `f(i, i, None)` for each free particle's
-/// regularisation.
-fn for_each_entry(
-    hinges: &[FlatHinge],
-    index: &[usize],
-    free: usize,
-    mut f: impl FnMut(usize, usize, Option<(usize, usize, usize)>),
-) {
-    for (k, h) in hinges.iter().enumerate() {
-        for a in 0..4 {
-            let ia = index[h.ids[a]];
-            if ia == usize::MAX {
-                continue;
-            }
-            for c in 0..4 {
-                let ic = index[h.ids[c]];
-                if ic != usize::MAX && ia >= ic {
-                    f(ia, ic, Some((k, a, c)));
-                }
-            }
-        }
-    }
-    for i in 0..free {
-        f(i, i, None);
     }
 }
 
