@@ -7,6 +7,7 @@ mod pins;
 mod stats;
 mod assembly;
 mod rest;
+mod rest_windows;
 mod simulation;
 mod explicit;
 mod implicit;
