@@ -450,8 +450,7 @@ class Simulation:
     ) -> RestOutcome:
         """Steps until every particle (all but ``moving_fraction`` of them) has moved
         less than ``tolerance`` m per step over a window of ``consecutive_steps`` steps
-        (judged from end to end, so trembling in place is rest; the windows overlap,
-        one opening every fifth of a window), or ``max_steps``.
+        (judged from end to end, so trembling in place is rest), or ``max_steps``.
         ``callback`` sees a
         :class:`Snapshot` every ``every`` steps; returning ``False`` stops the run
         (reason ``"stopped"``); an exception it raises stops the run and propagates.

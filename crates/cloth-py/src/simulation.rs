@@ -120,8 +120,8 @@ impl Simulation {
     }
 
     /// Steps until every particle (all but `moving_fraction` of them) has moved less than
-    /// `tolerance` m per step over a window of `consecutive_steps` steps (end to end; the
-    /// windows overlap, one opening every fifth of a window), or `max_steps`. `callback`
+    /// `tolerance` m per step over a window of `consecutive_steps` steps (end to end), or
+    /// `max_steps`. `callback`
     /// sees a Snapshot every `every` steps; returning False stops the run (reason
     /// "stopped"); an exception it raises stops the run and propagates. Ctrl-C stops it
     /// too (KeyboardInterrupt, the state kept). With `max_time_step`, each step taken

@@ -7,7 +7,6 @@ mod pins;
 mod stats;
 mod assembly;
 mod rest;
-mod rest_windows;
 mod simulation;
 mod explicit;
 mod implicit;

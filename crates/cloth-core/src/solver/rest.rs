@@ -7,8 +7,7 @@ use serde::{Deserialize, Serialize};
 /// At rest when, over a window of `consecutive_steps` steps (and half a second at least),
 /// every particle (all but `moving_fraction` of them) has moved less than `tolerance`
 /// metres per step of the window from where it was at the window's start; otherwise stop
-/// after `max_steps` steps. The windows overlap, one opening every fifth of a window, so
-/// the run stops within a fifth of a window of the first that rested. The motion is judged from end to end of the window, not step
+/// after `max_steps` steps. The motion is judged from end to end of the window, not step
 /// by step, so that cloth that only trembles in place, its contacts catching and letting
 /// go, is at rest: a GarmentCode dress (rand_1_037), the fastest of its particles at 1-5
 /// cm/s in every step to the end, went 500 steps of 0.1 s without resting, while over its

@@ -2,7 +2,7 @@
 
 use super::assembly::{ForceModel, Materials, SeamPairs, SeamPull};
 use super::error::{DivergenceReason, SimError, SolveFailure};
-use super::rest_windows::RestWindows;
+use super::rest::MIN_WINDOW;
 use super::{
     Integrator, Interrupt, Pin, PinMotion, RestCriteria, RestOutcome, SolverSettings, StepStats, StopReason,
 };
@@ -296,7 +296,7 @@ impl SimulationBuilder {
                 v_new: zeros.clone(),
                 x_start: zeros.clone(),
                 v_start: zeros.clone(),
-                rest_windows: RestWindows::default(),
+                rest_anchor: zeros,
                 filter: Filter::new(n, filter_capacity),
                 pcg: Pcg::new(n),
                 pin_targets: Vec::with_capacity(pin_count),
@@ -330,8 +330,8 @@ pub(super) struct Workspace {
     /// The state at the start of the step, to take it again in shorter substeps.
     pub x_start: Vec<Vec3>,
     pub v_start: Vec<Vec3>,
-    /// A run to rest's open windows, with where the particles were at the start of each.
-    pub rest_windows: RestWindows,
+    /// Where the particles were at the start of a run to rest's window.
+    pub rest_anchor: Vec<Vec3>,
     pub filter: Filter,
     pub pcg: Pcg,
     /// Where each pin wants its particle at the end of the step (its path is asked once).
@@ -793,7 +793,9 @@ impl Simulation {
         let base = self.settings.time_step;
         let accuracy = 0.01 * criteria.tolerance / base;
         let allowed = (criteria.moving_fraction * self.x.len() as f64).floor() as usize;
-        self.ws.rest_windows.start(criteria.consecutive_steps, &self.x);
+        // The window's start is in `ws.rest_anchor`; the steps and time into it.
+        self.ws.rest_anchor.copy_from_slice(&self.x);
+        let (mut window_steps, mut window_time) = (0u32, 0.0);
         let mut last = StepStats::default();
         for k in 1..=criteria.max_steps {
             last = match self.step_to(accuracy) {
@@ -816,25 +818,25 @@ impl Simulation {
                 });
             }
             let h = self.settings.time_step;
-            let windows = &mut self.ws.rest_windows;
-            windows.advance(h);
-            // Nor is cloth at rest that is still being pulled out of itself: the few
-            // particles moved are within the fraction allowed to move.
-            let pulling = self.self_contacts.as_ref().is_some_and(|sc| sc.pulling_apart());
-            while let Some((start, time)) = windows.ripe() {
+            window_steps += 1;
+            window_time += h;
+            if window_steps >= criteria.consecutive_steps && window_time >= MIN_WINDOW {
                 // The tolerance is per step of the solver's length: the window's budget
                 // grows with its time as the steps do.
-                let budget = criteria.tolerance * time / base;
-                if !pulling && moved_farther(&self.x, start, budget) <= allowed {
+                let budget = criteria.tolerance * window_time / base;
+                // Nor is cloth at rest that is still being pulled out of itself: the few
+                // particles moved are within the fraction allowed to move.
+                let pulling = self.self_contacts.as_ref().is_some_and(|sc| sc.pulling_apart());
+                if !pulling && moved_farther(&self.x, &self.ws.rest_anchor, budget) <= allowed {
                     return Ok(RestOutcome {
                         reason: StopReason::AtRest,
                         steps: k,
                         last,
                     });
                 }
-                windows.close_oldest();
+                self.ws.rest_anchor.copy_from_slice(&self.x);
+                (window_steps, window_time) = (0, 0.0);
             }
-            windows.open_if_due(&self.x);
             if let Some(most) = criteria.max_time_step {
                 self.settings.time_step = next_time_step(h, base, most, &last);
             }
