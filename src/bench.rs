@@ -1,11 +1,11 @@
 //! The standard benchmark scenes behind `cloth bench`: a fixed set of runs whose time per
 //! step and CG iterations are printed as JSON, to track speed over time.
 
-use crate::scene_file::{ClothSpec, PreparedCloth, RunObserver, SceneFile};
+use crate::scene_file::{ClothSpec, PreparedCloth, SceneFile, Silent};
 use cloth_collide::{Bodies, Body, TriSurface};
 use cloth_core::{
     math::Vec3, Fabric, GridBuilder, Interrupt, Pin, SelfCollision, Simulation, SimulationBuilder,
-    SolverSettings, StepStats,
+    SolverSettings,
 };
 use cloth_garment::sewing::{drape_simulation, sew};
 use serde::Serialize;
@@ -79,7 +79,7 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, Stri
         *edge_length = 0.035;
     }
     let prepare = || scene.prepare("dress.toml", &dir).map_err(|x| e(&x));
-    let run = prepare()?.run(&scene, None, &mut Quiet).map_err(|x| e(&x))?;
+    let run = prepare()?.run(&scene, None, &mut Silent).map_err(|x| e(&x))?;
     let report = &run.report;
     if !run.finished() {
         return Err(format!("dress_to_rest: the run ended {:?}", report.outcome));
@@ -128,15 +128,6 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, Stri
         scenes: results,
         to_rest,
     })
-}
-
-/// Watches a benchmark's run without a word.
-struct Quiet;
-
-impl RunObserver for Quiet {
-    fn step(&mut self, _: &'static str, _: &Simulation, _: &StepStats) -> ControlFlow<()> {
-        ControlFlow::Continue(())
-    }
 }
 
 /// Steps of the sheet dropped on the sphere before its steps are timed: by then it lies

@@ -7,18 +7,9 @@
 mod common;
 
 use cloth::garment::sewing::{sew, StallThen};
-use cloth::scene_file::{PreparedCloth, RunObserver, RunOutcome};
-use cloth::{math::Vec3, Interrupt, Simulation, StepStats};
+use cloth::scene_file::{PreparedCloth, RunOutcome, Silent};
+use cloth::{math::Vec3, Interrupt};
 use std::ops::ControlFlow;
-
-struct Quiet;
-
-impl RunObserver for Quiet {
-    fn stage(&mut self, _: &'static str, _: u64) {}
-    fn step(&mut self, _: &'static str, _: &Simulation, _: &StepStats) -> ControlFlow<()> {
-        ControlFlow::Continue(())
-    }
-}
 
 /// Where a design's top edge should come to rest on the body, m above its feet.
 struct Fit {
@@ -30,7 +21,7 @@ struct Fit {
 fn drape(fit: &Fit) -> Vec<String> {
     let (scene, prepared) = common::garmentcode_scene(fit.design, 0.03);
     let warnings: Vec<String> = prepared.warnings.iter().map(ToString::to_string).collect();
-    let result = prepared.run(&scene, None, &mut Quiet).unwrap();
+    let result = prepared.run(&scene, None, &mut Silent).unwrap();
     let r = &result.report;
     let s = &r.strain;
     println!(
@@ -341,7 +332,7 @@ fn a_waistband_cut_to_a_narrower_waist_is_zipped_round_a_wider_one_and_rests_str
     );
     let scene = cloth::scene_file::SceneFile::from_toml_str(&text, "scene.toml").unwrap();
     let prepared = scene.prepare("scene.toml", &dir).unwrap();
-    let result = prepared.run(&scene, None, &mut Quiet).unwrap();
+    let result = prepared.run(&scene, None, &mut Silent).unwrap();
     std::fs::remove_dir_all(&dir).ok();
     let r = &result.report;
     let last = r.seam_stalls.last().expect("stalled");

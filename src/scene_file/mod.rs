@@ -22,7 +22,7 @@ pub use cloth_file::read_cloth_obj;
 pub use error::{SceneErrorKind, SceneFileError};
 pub use fit::Fit;
 pub use frame::{placement, UpAxis};
-pub use observer::RunObserver;
+pub use observer::{RunObserver, Silent};
 pub use panel_report::PanelReport;
 pub(crate) use recorder::median;
 pub use records::{

@@ -18,3 +18,14 @@ pub trait RunObserver {
     /// After every step of `stage`.
     fn step(&mut self, stage: &'static str, sim: &Simulation, stats: &StepStats) -> ControlFlow<()>;
 }
+
+/// Sees nothing and never stops the run: for callers that want only its result (the
+/// benchmarks, the tests).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Silent;
+
+impl RunObserver for Silent {
+    fn step(&mut self, _: &'static str, _: &Simulation, _: &StepStats) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+}
