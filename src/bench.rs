@@ -1,16 +1,16 @@
 //! The standard benchmark scenes behind `cloth bench`: a fixed set of runs whose time per
 //! step and CG iterations are printed as JSON, to track speed over time.
 
-use crate::scene_file::{ClothSpec, PreparedCloth, SceneFile, Silent};
+use crate::scene_file::{ClothSpec, Prepared, PreparedCloth, SceneFile, Silent};
 use cloth_collide::{Bodies, Body, TriSurface};
 use cloth_core::{
     math::Vec3, Fabric, GridBuilder, Interrupt, Pin, SelfCollision, Simulation, SimulationBuilder,
     SolverSettings,
 };
-use cloth_garment::sewing::{drape_simulation, sew};
+use cloth_garment::sewing::{drape_simulation, sew, Sewn};
 use serde::Serialize;
 use std::ops::ControlFlow;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -73,13 +73,11 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, Stri
     results.push(time_steps(format!("sphere_drop_{side}x{side}"), sim, steps)?);
 
     // The main job's scene, run as `cloth run` runs it (without writing outputs).
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-    let (mut scene, dir) = SceneFile::from_path(&dir.join("dress.toml")).map_err(|x| e(&x))?;
-    if let (true, ClothSpec::Garment { edge_length, .. }) = (quick, &mut scene.cloth) {
-        *edge_length = 0.035;
-    }
-    let prepare = || scene.prepare("dress.toml", &dir).map_err(|x| e(&x));
-    let run = prepare()?.run(&scene, None, &mut Silent).map_err(|x| e(&x))?;
+    let dress = DressScene::load(if quick { Some(0.035) } else { None })?;
+    let run = dress
+        .prepare()?
+        .run(&dress.scene, None, &mut Silent)
+        .map_err(|x| e(&x))?;
     let report = &run.report;
     if !run.finished() {
         return Err(format!("dress_to_rest: the run ended {:?}", report.outcome));
@@ -98,20 +96,7 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, Stri
     }];
 
     // The drape's steps timed from the dress sewn again.
-    let prepared = prepare()?;
-    let PreparedCloth::Garment { garment, fabrics } = prepared.cloth else {
-        return Err("the dress scene is not a garment".into());
-    };
-    let bodies = prepared.bodies;
-    let sewn = sew(
-        &garment,
-        &fabrics,
-        bodies.clone(),
-        &scene.sewing_settings(),
-        &Interrupt::default(),
-        |_, _, _| ControlFlow::Continue(()),
-    )
-    .map_err(|x| e(&x))?;
+    let (sewn, bodies) = dress.sew()?;
     // Draped with self-collision and without, from the same sewn dress.
     for (name, self_collision) in [
         ("dress_drape", SelfCollision::default()),
@@ -130,22 +115,116 @@ pub fn standard_benchmarks(steps: usize, quick: bool) -> Result<Benchmarks, Stri
     })
 }
 
+/// The main job's dress scene, its edge length possibly changed.
+struct DressScene {
+    scene: SceneFile,
+    dir: PathBuf,
+}
+
+impl DressScene {
+    fn load(edge_length: Option<f64>) -> Result<Self, String> {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/dress.toml");
+        let (mut scene, dir) = SceneFile::from_path(&path).map_err(|x| x.to_string())?;
+        if let (Some(h), ClothSpec::Garment { edge_length, .. }) = (edge_length, &mut scene.cloth) {
+            *edge_length = h;
+        }
+        Ok(Self { scene, dir })
+    }
+
+    fn prepare(&self) -> Result<Prepared, String> {
+        (self.scene)
+            .prepare("dress.toml", &self.dir)
+            .map_err(|x| x.to_string())
+    }
+
+    /// The dress sewn as its scene's sewing stage sews it, and the bodies it is on.
+    fn sew(&self) -> Result<(Sewn, Arc<Bodies>), String> {
+        let e = |e: &dyn std::fmt::Display| e.to_string();
+        let prepared = self.prepare()?;
+        let PreparedCloth::Garment { garment, fabrics } = prepared.cloth else {
+            return Err("the dress scene is not a garment".into());
+        };
+        let bodies = prepared.bodies;
+        let sewn = sew(
+            &garment,
+            &fabrics,
+            bodies.clone(),
+            &self.scene.sewing_settings(),
+            &Interrupt::default(),
+            |_, _, _| ControlFlow::Continue(()),
+        )
+        .map_err(|x| e(&x))?;
+        Ok((sewn, bodies))
+    }
+}
+
 /// Steps of the sheet dropped on the sphere before its steps are timed: by then it lies
 /// on the sphere, its sides still swinging down.
 const LANDING_STEPS: usize = 40;
 
-/// The hanging sheet at 55, 110, 224 and 447 particles a side (3,025 to 199,809), for how
-/// the cost of a step grows with the particles; `quick` at 12, 24 and 48.
-pub fn scaling_benchmarks(steps: usize, quick: bool) -> Result<Vec<BenchResult>, String> {
+/// How a step's cost grows with the particles, from about 3,000 to 200,000.
+#[derive(Debug, Clone, Serialize)]
+pub struct Scaling {
+    /// The hanging sheet at 55, 110, 224 and 447 particles a side.
+    pub sheet: Vec<BenchResult>,
+    /// The main job's dress at 2, 1, 1/2 and 1/4 times its edge length.
+    pub dress: Vec<DressScaling>,
+}
+
+/// The dress at one edge length: its sewing, and then steps of its drape timed.
+#[derive(Debug, Clone, Serialize)]
+pub struct DressScaling {
+    /// m.
+    pub edge_length: f64,
+    pub sewing_steps: u64,
+    pub sewing_seconds: f64,
+    pub sewing_cg_iterations: usize,
+    pub drape: BenchResult,
+}
+
+/// The hanging sheet at 55, 110, 224 and 447 particles a side (3,025 to 199,809), and the
+/// main job's dress sewn at twice, once, half and a quarter its edge length (about 3,000
+/// to 190,000 particles), then `steps` steps of its drape timed, for how the cost of a
+/// step grows with the particles; `quick` at 12, 24 and 48 a side, and the dress at 14
+/// and 7 cm.
+pub fn scaling_benchmarks(steps: usize, quick: bool) -> Result<Scaling, String> {
     let sides: &[usize] = if quick {
         &[12, 24, 48]
     } else {
         &[55, 110, 224, 447]
     };
-    sides
+    let sheet = sides
         .iter()
         .map(|&n| time_steps(format!("hanging_sheet_{n}x{n}"), hanging_sheet(n)?, steps))
-        .collect()
+        .collect::<Result<_, _>>()?;
+    let main_job = DressScene::load(None)?;
+    let ClothSpec::Garment { edge_length, .. } = main_job.scene.cloth else {
+        return Err("the dress scene is not a garment".into());
+    };
+    let scales: &[f64] = if quick {
+        &[0.14, 0.07]
+    } else {
+        &[2.0, 1.0, 0.5, 0.25]
+    };
+    let dress = scales
+        .iter()
+        .map(|&scale| {
+            let h = if quick { scale } else { edge_length * scale };
+            let (sewn, bodies) = DressScene::load(Some(h))?.sew()?;
+            let report = sewn.report.clone();
+            let sim =
+                drape_simulation(&sewn, bodies, SolverSettings::default(), 0.0).map_err(|x| x.to_string())?;
+            let name = format!("dress_drape_{:.1}mm", h * 1e3);
+            Ok(DressScaling {
+                edge_length: h,
+                sewing_steps: report.steps,
+                sewing_seconds: report.seconds,
+                sewing_cg_iterations: report.cg_iterations,
+                drape: time_steps(name, sim, steps)?,
+            })
+        })
+        .collect::<Result<_, String>>()?;
+    Ok(Scaling { sheet, dress })
 }
 
 /// The source's sheet: 1 m square, `n` x `n` particles, hanging from its two top corners.

@@ -151,8 +151,8 @@ pub fn bench(steps: usize, quick: bool, scaling: bool) -> Result<(), Failure> {
     }
     let results = cloth::bench::standard_benchmarks(steps, quick).map_err(Failure::run)?;
     let scaling = match scaling {
-        true => cloth::bench::scaling_benchmarks(steps, quick).map_err(Failure::run)?,
-        false => Vec::new(),
+        true => Some(cloth::bench::scaling_benchmarks(steps, quick).map_err(Failure::run)?),
+        false => None,
     };
     let json = serde_json::json!({
         "threads": cloth::bench::threads(),

@@ -53,8 +53,10 @@ enum Command {
         /// About a tenth of the particles: a smoke test, not a measurement.
         #[arg(long)]
         quick: bool,
-        /// Also the hanging sheet from 3,025 to 199,809 particles (55 to 447 a side), for
-        /// how a step's cost grows (with --quick, 12 to 48 a side).
+        /// Also the hanging sheet from 3,025 to 199,809 particles (55 to 447 a side) and the
+        /// dress sewn at 2, 1, 1/2 and 1/4 times its edge length (about 3,000 to 190,000),
+        /// for how a step's cost grows (with --quick, 12 to 48 a side and the dress at 14
+        /// and 7 cm).
         #[arg(long)]
         scaling: bool,
     },

@@ -546,14 +546,23 @@ fn bench_prints_json_for_the_standard_scenes() {
         assert!(to_rest[format!("{stage}_steps")].as_u64().unwrap() > 0);
         assert!(to_rest[format!("{stage}_seconds")].as_f64().unwrap() > 0.0);
     }
-    // The quick scaling runs the sheet at 12, 24 and 48 a side.
-    let scaling: Vec<u64> = json["scaling"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|s| s["particles"].as_u64().unwrap())
-        .collect();
-    assert_eq!(scaling, [144, 576, 2304]);
+    // The quick scaling runs the sheet at 12, 24 and 48 a side, and the dress sewn at 14
+    // and 7 cm, the finer with more particles.
+    let particles = |list: &serde_json::Value| -> Vec<u64> {
+        let list = list.as_array().unwrap().iter();
+        list.map(|s| s["particles"].as_u64().unwrap()).collect()
+    };
+    assert_eq!(particles(&json["scaling"]["sheet"]), [144, 576, 2304]);
+    let dress = json["scaling"]["dress"].as_array().unwrap();
+    let edges: Vec<f64> = dress.iter().map(|d| d["edge_length"].as_f64().unwrap()).collect();
+    assert_eq!(edges, [0.14, 0.07]);
+    let drapes: Vec<_> = dress.iter().map(|d| d["drape"].clone()).collect();
+    let drape_particles = particles(&serde_json::Value::Array(drapes));
+    assert!(drape_particles[1] > 2 * drape_particles[0], "{drape_particles:?}");
+    for d in dress {
+        assert!(d["sewing_steps"].as_u64().unwrap() > 0);
+        assert_eq!(d["drape"]["steps"], 3);
+    }
     assert!(json["threads"].as_u64().unwrap() >= 1);
 }
 
