@@ -14,13 +14,16 @@ use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::TriMesh;
 use std::path::Path;
 
-fn surface(mesh: &FileMesh) -> TriMesh {
+fn surface(mesh: &FileMesh, path: &str) -> TriMesh {
     let vertices = mesh
         .positions
         .iter()
         .map(|p| Vector::new(p.x, p.y, p.z))
         .collect();
-    TriMesh::new(vertices, mesh.triangles.clone()).expect("a cloth has triangles")
+    TriMesh::new(vertices, mesh.triangles.clone()).unwrap_or_else(|e| {
+        eprintln!("{path}: not a surface to measure to: {e}");
+        std::process::exit(1)
+    })
 }
 
 /// The farthest any vertex of `from` lies from the surface `to`.
@@ -32,7 +35,7 @@ fn one_way(from: &[Vec3], to: &TriMesh) -> f64 {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let [a, b] = &args[..] else {
+    let [path_a, path_b] = &args[..] else {
         eprintln!("usage: rest_distance BEFORE.obj AFTER.obj");
         std::process::exit(2);
     };
@@ -42,8 +45,9 @@ fn main() {
             std::process::exit(1)
         })
     };
-    let (a, b) = (read(a), read(b));
-    let hausdorff = one_way(&a.positions, &surface(&b)).max(one_way(&b.positions, &surface(&a)));
+    let (a, b) = (read(path_a), read(path_b));
+    let hausdorff =
+        one_way(&a.positions, &surface(&b, path_b)).max(one_way(&b.positions, &surface(&a, path_a)));
     print!("hausdorff {:.2} mm", 1e3 * hausdorff);
     if a.positions.len() == b.positions.len() {
         let mut d: Vec<f64> = a

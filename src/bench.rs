@@ -139,7 +139,6 @@ impl DressScene {
 
     /// The dress sewn as its scene's sewing stage sews it, and the bodies it is on.
     fn sew(&self) -> Result<(Sewn, Arc<Bodies>), String> {
-        let e = |e: &dyn std::fmt::Display| e.to_string();
         let prepared = self.prepare()?;
         let PreparedCloth::Garment { garment, fabrics } = prepared.cloth else {
             return Err("the dress scene is not a garment".into());
@@ -153,7 +152,7 @@ impl DressScene {
             &Interrupt::default(),
             |_, _, _| ControlFlow::Continue(()),
         )
-        .map_err(|x| e(&x))?;
+        .map_err(|x| x.to_string())?;
         Ok((sewn, bodies))
     }
 }
@@ -197,30 +196,23 @@ pub fn scaling_benchmarks(steps: usize, quick: bool) -> Result<Scaling, String> 
         .iter()
         .map(|&n| time_steps(format!("hanging_sheet_{n}x{n}"), hanging_sheet(n)?, steps))
         .collect::<Result<_, _>>()?;
-    let main_job = DressScene::load(None)?;
-    let ClothSpec::Garment { edge_length, .. } = main_job.scene.cloth else {
-        return Err("the dress scene is not a garment".into());
+    let edge_lengths = match DressScene::load(None)?.scene.cloth {
+        _ if quick => vec![0.14, 0.07],
+        ClothSpec::Garment { edge_length, .. } => [2.0, 1.0, 0.5, 0.25].map(|s| s * edge_length).to_vec(),
+        _ => return Err("the dress scene is not a garment".into()),
     };
-    let scales: &[f64] = if quick {
-        &[0.14, 0.07]
-    } else {
-        &[2.0, 1.0, 0.5, 0.25]
-    };
-    let dress = scales
-        .iter()
-        .map(|&scale| {
-            let h = if quick { scale } else { edge_length * scale };
+    let dress = edge_lengths
+        .into_iter()
+        .map(|h| {
             let (sewn, bodies) = DressScene::load(Some(h))?.sew()?;
-            let report = sewn.report.clone();
             let sim =
                 drape_simulation(&sewn, bodies, SolverSettings::default(), 0.0).map_err(|x| x.to_string())?;
-            let name = format!("dress_drape_{:.1}mm", h * 1e3);
             Ok(DressScaling {
                 edge_length: h,
-                sewing_steps: report.steps,
-                sewing_seconds: report.seconds,
-                sewing_cg_iterations: report.cg_iterations,
-                drape: time_steps(name, sim, steps)?,
+                sewing_steps: sewn.report.steps,
+                sewing_seconds: sewn.report.seconds,
+                sewing_cg_iterations: sewn.report.cg_iterations,
+                drape: time_steps(format!("dress_drape_{:.1}mm", h * 1e3), sim, steps)?,
             })
         })
         .collect::<Result<_, String>>()?;
