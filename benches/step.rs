@@ -49,6 +49,10 @@ fn benches(c: &mut Criterion) {
     // V-cycle (once per CG iteration), on the same matrix with no constraint.
     let filter = Filter::new(a.n(), 0);
     let mut multigrid = Multigrid::new(&a);
+    // Built here too, so a filtered run of the cycle alone has a hierarchy to cycle.
+    multigrid
+        .build(&a, &filter, Parallelism::Rayon)
+        .expect("definite");
     group.bench_function("multigrid_setup", |b| {
         b.iter(|| {
             multigrid
@@ -58,6 +62,14 @@ fn benches(c: &mut Criterion) {
     });
     group.bench_function("multigrid_cycle", |b| {
         b.iter(|| multigrid.apply(&a, &filter, black_box(&x), &mut y, Parallelism::Rayon))
+    });
+    // The product and the cycle on one thread: what the work costs without the threads'
+    // hand-overs, for how many products' worth a cycle is.
+    group.bench_function("matrix_vector_product_one_thread", |b| {
+        b.iter(|| a.mul(black_box(&x), &mut y, Parallelism::Sequential))
+    });
+    group.bench_function("multigrid_cycle_one_thread", |b| {
+        b.iter(|| multigrid.apply(&a, &filter, black_box(&x), &mut y, Parallelism::Sequential))
     });
 
     // Consecutive steps of the falling sheet: the median is a typical step of the run.
