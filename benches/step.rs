@@ -41,10 +41,6 @@ fn benches(c: &mut Criterion) {
     let a = sim.system_matrix().clone();
     let x: Vec<Vec3> = (0..a.n()).map(|i| Vec3::new(i as f64, 1.0, -0.5)).collect();
     let mut y = vec![Vec3::zeros(); a.n()];
-    group.bench_function("matrix_vector_product", |b| {
-        b.iter(|| a.mul(black_box(&x), &mut y, Parallelism::Rayon))
-    });
-
     // The preconditioner on its own: its setup (once per solve, for a new matrix) and one
     // V-cycle (once per CG iteration), on the same matrix with no constraint.
     let filter = Filter::new(a.n(), 0);
@@ -60,17 +56,16 @@ fn benches(c: &mut Criterion) {
                 .expect("definite")
         })
     });
-    group.bench_function("multigrid_cycle", |b| {
-        b.iter(|| multigrid.apply(&a, &filter, black_box(&x), &mut y, Parallelism::Rayon))
-    });
-    // The product and the cycle on one thread: what the work costs without the threads'
-    // hand-overs, for how many products' worth a cycle is.
-    group.bench_function("matrix_vector_product_one_thread", |b| {
-        b.iter(|| a.mul(black_box(&x), &mut y, Parallelism::Sequential))
-    });
-    group.bench_function("multigrid_cycle_one_thread", |b| {
-        b.iter(|| multigrid.apply(&a, &filter, black_box(&x), &mut y, Parallelism::Sequential))
-    });
+    // The product and the cycle on rayon's pool, then on one thread: what the work costs
+    // without the threads' hand-overs, for how many products' worth a cycle is.
+    for (par, on) in [(Parallelism::Rayon, ""), (Parallelism::Sequential, "_one_thread")] {
+        group.bench_function(format!("matrix_vector_product{on}"), |b| {
+            b.iter(|| a.mul(black_box(&x), &mut y, par))
+        });
+        group.bench_function(format!("multigrid_cycle{on}"), |b| {
+            b.iter(|| multigrid.apply(&a, &filter, black_box(&x), &mut y, par))
+        });
+    }
 
     // Consecutive steps of the falling sheet: the median is a typical step of the run.
     let mut iterations = Vec::new();
