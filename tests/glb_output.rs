@@ -2,6 +2,7 @@
 //! on import) and, for the container and extras, byte by byte.
 
 use cloth::collide::TriSurface;
+use cloth::formats::panels::PanelLabels;
 use cloth::output::{write_glb, GlbCloth};
 use cloth::{math::Vec3, ClothMesh, GridBuilder};
 use nalgebra::Vector2;
@@ -166,6 +167,7 @@ fn cloth_and_bodies_read_back() {
         &GlbCloth {
             mesh: &mesh,
             positions: &positions,
+            panels: None,
         },
         &bodies,
     )
@@ -230,6 +232,7 @@ fn unstrained_sheet_alone_is_blue() {
         &GlbCloth {
             mesh: &mesh,
             positions: mesh.positions(),
+            panels: None,
         },
         &[],
     )
@@ -253,6 +256,7 @@ fn seam_vertices_keep_both_material_coordinates() {
         &GlbCloth {
             mesh: &mesh,
             positions: mesh.positions(),
+            panels: None,
         },
         &[("ball".into(), ball())],
     )
@@ -271,6 +275,73 @@ fn seam_vertices_keep_both_material_coordinates() {
     assert_eq!(cloth.normals[seam[0]], cloth.normals[seam[1]]);
 }
 
+/// A garment's panels ride along: `_PANEL` on every glTF vertex (each one panel's, the seam
+/// vertices split), their names in the extras.
+#[test]
+fn panels_are_a_vertex_attribute_with_their_names() {
+    let mesh = seamed_mesh();
+    let panels = PanelLabels::new(vec!["left".into(), "right".into()], vec![0, 0, 1, 1]).expect("labels");
+    let path = out_path("panels.glb");
+    write_glb(
+        &path,
+        &GlbCloth {
+            mesh: &mesh,
+            positions: mesh.positions(),
+            panels: Some(&panels),
+        },
+        &[],
+    )
+    .expect("written");
+    let (doc, buffers) = read_glb(&path);
+    let node = doc
+        .nodes()
+        .find(|n| n.name() == Some("cloth"))
+        .expect("the cloth");
+    let extras: serde_json::Value =
+        serde_json::from_str(node.extras().as_ref().expect("extras").get()).expect("json");
+    assert_eq!(extras["panels"], serde_json::json!(["left", "right"]));
+    let primitive = node
+        .mesh()
+        .expect("a mesh")
+        .primitives()
+        .next()
+        .expect("a primitive");
+    let (_, accessor) = primitive
+        .attributes()
+        .find(|(s, _)| *s == gltf::Semantic::Extras("PANEL".into()))
+        .expect("a _PANEL attribute");
+    let view = accessor.view().expect("a buffer view");
+    let bytes = &buffers[0][view.offset()..view.offset() + view.length()];
+    let labels: Vec<f32> = bytes
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes(b.try_into().expect("4 bytes")))
+        .collect();
+    let positions: Vec<Vec3> = primitive
+        .reader(|b| buffers.get(b.index()).map(|d| &d[..]))
+        .read_positions()
+        .expect("POSITION")
+        .map(z_up)
+        .collect();
+    assert_eq!(labels.len(), positions.len());
+    // The left panel is the square at y = 0 (x from 0 to 0.1, z from 0 to 0.1) and the
+    // right one the square at x = 0.1; the seam (x = 0.1, y = 0) is in both, once each.
+    for (p, &label) in positions.iter().zip(&labels) {
+        let on_seam = (p.x - 0.1).abs() < 1e-6 && p.y.abs() < 1e-6;
+        let expected = if p.y.abs() < 1e-6 && !on_seam { 0.0 } else { 1.0 };
+        if !on_seam {
+            assert_eq!(label, expected, "vertex at {p:?}");
+        }
+    }
+    let seam: Vec<f32> = positions
+        .iter()
+        .zip(&labels)
+        .filter(|(p, _)| (p.x - 0.1).abs() < 1e-6 && p.y.abs() < 1e-6)
+        .map(|(_, &l)| l)
+        .collect();
+    assert_eq!(seam.len(), 4, "two seam vertices, split in two");
+    assert_eq!(seam.iter().filter(|&&l| l == 0.0).count(), 2);
+}
+
 fn u32_at(bytes: &[u8], at: usize) -> usize {
     u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes")) as usize
 }
@@ -284,6 +355,7 @@ fn glb_framing_and_extras() {
         &GlbCloth {
             mesh: &mesh,
             positions: &positions,
+            panels: None,
         },
         &[("ball".into(), ball())],
     )
@@ -344,6 +416,7 @@ fn non_finite_or_mismatched_positions_are_errors() {
             &GlbCloth {
                 mesh: &mesh,
                 positions: &broken,
+                panels: None,
             },
             &[],
         )
@@ -357,6 +430,7 @@ fn non_finite_or_mismatched_positions_are_errors() {
         &GlbCloth {
             mesh: &mesh,
             positions: &positions[1..],
+            panels: None,
         },
         &[],
     )

@@ -50,6 +50,9 @@ pub struct DrapeRequest {
     /// The body's contact layer thinned where it is flat down to this, m (`None`: the
     /// body's thickness everywhere).
     pub body_min_thickness: Option<f64>,
+    /// The up axis of the OBJ and PLY outputs (`None`: z, the engine's).
+    #[serde(default)]
+    pub up_axis: Option<UpAxis>,
 }
 
 /// Something wrong with the batch as a whole (not with one pattern).
@@ -77,12 +80,12 @@ impl DrapeRequest {
     pub fn scene_toml(&self, pattern: &PatternInput) -> String {
         let mut body = toml::Table::new();
         body.insert("file".into(), self.body.display().to_string().into());
+        let axis = |up| match up {
+            UpAxis::Y => "y",
+            UpAxis::Z => "z",
+        };
         if let Some(up) = self.body_up_axis {
-            let axis = match up {
-                UpAxis::Y => "y",
-                UpAxis::Z => "z",
-            };
-            body.insert("up_axis".into(), axis.into());
+            body.insert("up_axis".into(), axis(up).into());
         }
         if let Some(floor) = self.body_min_thickness {
             body.insert("min_thickness".into(), floor.into());
@@ -105,6 +108,10 @@ impl DrapeRequest {
             ),
         );
         scene.insert("bodies".into(), toml::Value::Array(vec![body.into()]));
+        if let Some(up) = self.up_axis {
+            let output = [("up_axis".to_string(), axis(up).into())].into_iter().collect();
+            scene.insert("output".into(), toml::Value::Table(output));
+        }
         format!(
             "# Written by `cloth drape`: {} on {}.\n{}",
             pattern.path.display(),

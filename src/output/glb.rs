@@ -8,23 +8,28 @@
 //! corners, so the seam vertices of a sewn garment keep each panel's material coordinates
 //! in `TEXCOORD_0` (metres). `COLOR_0` is the strain colour of the PLY: per vertex the mean
 //! over its triangles of the larger of warp and weft strain, compression as 0; its full
-//! scale is in the cloth node's `extras`.
+//! scale is in the cloth node's `extras`. A garment's vertices carry their panel in `_PANEL`
+//! (a float attribute, the panel's number; each glTF vertex is one panel's), and the
+//! panels' names are in the extras.
 
 use cloth_collide::TriSurface;
 use cloth_core::{math::Vec3, ClothMesh};
 use cloth_formats::atomic::write_atomically;
 use cloth_formats::gltf::{vertex_normals, y_up, GlbDocument, GlbMaterial, GlbMesh};
+use cloth_formats::panels::PanelLabels;
 use cloth_render::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use serde_json::json;
 use std::collections::HashMap;
 use std::io::{Error, ErrorKind};
 use std::path::Path;
 
-/// The draped cloth: its mesh and the positions of its vertices, m.
+/// The draped cloth: its mesh and the positions of its vertices, m, and a garment's
+/// panels.
 #[derive(Debug, Clone, Copy)]
 pub struct GlbCloth<'a> {
     pub mesh: &'a ClothMesh,
     pub positions: &'a [Vec3],
+    pub panels: Option<&'a PanelLabels>,
 }
 
 /// Writes `cloth` (named "cloth") and `bodies` (named by their names) as a .glb file.
@@ -62,20 +67,34 @@ fn glb_bytes(cloth: &GlbCloth<'_>, bodies: &[(String, TriSurface)]) -> std::io::
     let split = Split::new(mesh)?;
     let per_split =
         |values: &[[f32; 3]]| -> Vec<[f32; 3]> { split.source.iter().map(|&v| values[v]).collect() };
+    let mut extras = json!({
+        "strain_full_scale_percent": FULL_SCALE_PERCENT,
+        "COLOR_0": "strain: mean over the vertex's triangles of max(warp, weft, 0) %, \
+                    blue at 0 through cyan, green, yellow to red at full scale",
+        "TEXCOORD_0": "material coordinates (u along the warp, v along the weft), m",
+    });
+    let panel_of: Vec<f32>;
+    let mut scalars: Vec<(&str, &[f32])> = Vec::new();
+    if let Some(panels) = cloth.panels {
+        panel_of = split
+            .triangle
+            .iter()
+            .map(|&t| panels.of_triangle().get(t).map_or(-1.0, |&p| p as f32))
+            .collect();
+        scalars.push(("_PANEL", &panel_of));
+        extras["_PANEL"] = json!("the vertex's panel: an index into `panels`");
+        extras["panels"] = json!(panels.names());
+    }
     doc.add_mesh(GlbMesh {
         name: "cloth",
         positions: &per_split(&positions),
         normals: &per_split(&normals),
         texcoords: Some(&split.uv),
         colours: Some(&per_split(&strain)),
+        scalars: &scalars,
         indices: &split.indices,
         material: cloth_material,
-        extras: Some(json!({
-            "strain_full_scale_percent": FULL_SCALE_PERCENT,
-            "COLOR_0": "strain: mean over the vertex's triangles of max(warp, weft, 0) %, \
-                        blue at 0 through cyan, green, yellow to red at full scale",
-            "TEXCOORD_0": "material coordinates (u along the warp, v along the weft), m",
-        })),
+        extras: Some(extras),
     })?;
     if !bodies.is_empty() {
         let grey = doc.add_material(GlbMaterial {
@@ -94,6 +113,7 @@ fn glb_bytes(cloth: &GlbCloth<'_>, bodies: &[(String, TriSurface)]) -> std::io::
                 normals: &vertex_normals(surface.vertices(), triangles),
                 texcoords: None,
                 colours: None,
+                scalars: &[],
                 indices: &indices,
                 material: grey,
                 extras: None,
@@ -106,8 +126,10 @@ fn glb_bytes(cloth: &GlbCloth<'_>, bodies: &[(String, TriSurface)]) -> std::io::
 /// The cloth's glTF vertices: one per distinct (vertex, material coordinate) of the
 /// triangle corners, so a seam vertex is split into one per panel.
 struct Split {
-    /// The cloth vertex of each glTF vertex.
+    /// The cloth vertex of each glTF vertex ...
     source: Vec<usize>,
+    /// ... and the first triangle with a corner at it (all of them are one panel's).
+    triangle: Vec<usize>,
     uv: Vec<[f32; 2]>,
     /// Three per triangle, in the mesh's order.
     indices: Vec<u32>,
@@ -120,6 +142,7 @@ impl Split {
         let mut ids: HashMap<(usize, [u64; 2]), u32> = HashMap::new();
         let mut split = Split {
             source: Vec::new(),
+            triangle: Vec::new(),
             uv: Vec::new(),
             indices: Vec::with_capacity(3 * mesh.triangles().len()),
         };
@@ -133,6 +156,7 @@ impl Split {
                             Error::new(ErrorKind::InvalidInput, "too many cloth vertices for glTF")
                         })?;
                         split.source.push(v);
+                        split.triangle.push(t);
                         split.uv.push([c.x as f32, c.y as f32]);
                         ids.insert(key, id);
                         id

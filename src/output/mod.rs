@@ -1,6 +1,8 @@
 //! What a scene run writes into its output folder: the cloth as OBJ (with material
 //! coordinates) and PLY (with strain colours), the bodies as OBJ, both in one glTF binary,
-//! a picture, and the report as JSON and markdown. Every file is written atomically.
+//! a picture, a garment's segmentation, and the report as JSON and markdown. OBJ and PLY
+//! are in the frame the scene asks (`[output] up_axis`) and say so in their headers; a
+//! garment's panels are OBJ groups and a PLY property. Every file is written atomically.
 
 mod glb;
 mod ply;
@@ -12,7 +14,7 @@ pub use report::write_report;
 
 use crate::scene_file::{OutputSpec, RunResult};
 use cloth_collide::{Bodies, TriSurface};
-use cloth_formats::obj::write_cloth_obj_with_uv;
+use cloth_formats::obj::{write_cloth_obj_with_uv, write_objects, ClothObj, ObjObject};
 use std::path::{Path, PathBuf};
 
 /// Writes the outputs `spec` asks for into `dir` (which must exist); returns the files.
@@ -23,14 +25,30 @@ pub fn write_outputs(
     spec: &OutputSpec,
 ) -> std::io::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
+    let up = spec.up_axis;
+    let panels = result.panels.as_ref();
+    // The strain is measured in any frame alike; only the files' coordinates turn.
+    let positions = up.turned_from_z_up(&result.positions);
     if spec.obj {
         let path = dir.join("cloth.obj");
-        write_cloth_obj_with_uv(&path, &result.mesh, &result.positions)?;
+        let comments = up.file_header("the cloth");
+        let obj = ClothObj {
+            comments: &comments,
+            mesh: &result.mesh,
+            positions: &positions,
+            panels,
+        };
+        write_cloth_obj_with_uv(&path, &obj)?;
         written.push(path);
     }
     if spec.ply {
         let path = dir.join("cloth.ply");
-        write_strain_ply(&path, &result.mesh, &result.positions)?;
+        write_strain_ply(&path, &result.mesh, &positions, up, panels)?;
+        written.push(path);
+    }
+    if let Some(panels) = panels.filter(|_| spec.segmentation) {
+        let path = dir.join("segmentation.txt");
+        panels.write_segmentation(&path, result.mesh.triangles(), result.mesh.vertex_count())?;
         written.push(path);
     }
     // The bodies where the run left them.
@@ -39,7 +57,13 @@ pub fn write_outputs(
     if spec.bodies && !surfaces.is_empty() {
         let path = dir.join("bodies.obj");
         let merged = TriSurface::merged(&surfaces);
-        cloth_formats::atomic::write_atomically(&path, |out| merged.write_obj_to(out))?;
+        let object = ObjObject {
+            name: None,
+            positions: &up.turned_from_z_up(merged.vertices()),
+            triangles: merged.triangles(),
+        };
+        let comments = up.file_header("the bodies");
+        cloth_formats::atomic::write_atomically(&path, |out| write_objects(out, &comments, &[object]))?;
         written.push(path);
     }
     if spec.glb {
@@ -53,6 +77,7 @@ pub fn write_outputs(
         let cloth = GlbCloth {
             mesh: &result.mesh,
             positions: &result.positions,
+            panels,
         };
         write_glb(&path, &cloth, &named)?;
         written.push(path);

@@ -39,8 +39,8 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
     }
     writeln!(
         out,
-        "{} particles, {} triangles, {:.2} s in all.\n",
-        report.particles, report.triangles, report.total_seconds
+        "{} particles, {} triangles, {:.2} s in all (cloth {}).\n",
+        report.particles, report.triangles, report.total_seconds, report.engine_version
     )?;
     writeln!(
         out,

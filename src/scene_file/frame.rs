@@ -1,5 +1,6 @@
 //! Turning a file's frame into ours: z up, the body facing -y.
 
+use cloth_core::math::Vec3;
 use cloth_formats::MeshFormat;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
@@ -32,6 +33,26 @@ impl UpAxis {
             UpAxis::Y => UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::FRAC_PI_2),
         }
     }
+
+    /// `points` of our world in this frame: for y up, (x, y, z) -> (x, z, -y), the turn
+    /// back of [`UpAxis::to_z_up`] (lengths and winding kept).
+    pub fn turned_from_z_up(self, points: &[Vec3]) -> Vec<Vec3> {
+        let turn = self.to_z_up().inverse();
+        points.iter().map(|p| turn * p).collect()
+    }
+
+    /// The header lines of an OBJ or PLY file holding `what` in this frame: what wrote
+    /// it, and the frame and units.
+    pub fn file_header(self, what: &str) -> Vec<String> {
+        let frame = match self {
+            UpAxis::Z => "z up (the engine's frame), metres",
+            UpAxis::Y => "y up, metres: turned from the engine's z up, (x, y, z) -> (x, z, -y)",
+        };
+        vec![
+            format!("{what}, written by cloth {}", env!("CARGO_PKG_VERSION")),
+            frame.to_string(),
+        ]
+    }
 }
 
 /// A file placed in our world: turned from its `up` axis to ours, then by `rotation`
@@ -59,6 +80,17 @@ mod tests {
         let q = placement(UpAxis::Y, [0.0; 3], [0.0; 3]).unwrap();
         let p = q * Point3::new(1.0, 2.0, 3.0);
         assert!((p.coords - Vector3::new(1.0, -3.0, 2.0)).norm() < 1e-12, "{p}");
+    }
+
+    #[test]
+    fn outputs_turn_back_to_y_up() {
+        let p = [Vec3::new(1.0, 2.0, 3.0)];
+        assert_eq!(UpAxis::Z.turned_from_z_up(&p), p);
+        let q = UpAxis::Y.turned_from_z_up(&p)[0];
+        assert!((q - Vec3::new(1.0, 3.0, -2.0)).norm() < 1e-12, "{q}");
+        // The turn read in undoes it.
+        let back = placement(UpAxis::Y, [0.0; 3], [0.0; 3]).unwrap() * nalgebra::Point3::from(q);
+        assert!((back.coords - p[0]).norm() < 1e-12, "{back}");
     }
 
     #[test]

@@ -2,12 +2,13 @@
 //! a failed or interrupted run still has something to write), times the stages, writes
 //! frames and takes the checkpoints the scene asks for.
 
+use super::frame::UpAxis;
 use super::observer::RunObserver;
 use super::records::OutputSpec;
 use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport};
 use super::strain_summary::StrainSummary;
 use cloth_core::{math::Vec3, ClothMesh, Simulation, StepStats, Tangle};
-use cloth_formats::obj::write_cloth_obj_with_uv;
+use cloth_formats::obj::{write_cloth_obj_with_uv, ClothObj};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -15,6 +16,7 @@ use std::time::Instant;
 pub(super) struct Recorder<'a> {
     observer: &'a mut dyn RunObserver,
     frames_every: u64,
+    up_axis: UpAxis,
     checkpoints: &'a [u64],
     frames_dir: Option<&'a Path>,
     /// The last good state: the mesh is replaced when a stage changes it (welding), with
@@ -70,6 +72,7 @@ impl<'a> Recorder<'a> {
         Self {
             observer,
             frames_every: output.frames_every.unwrap_or(0),
+            up_axis: output.up_axis,
             checkpoints: &output.checkpoints,
             frames_dir,
             mesh: mesh.clone(),
@@ -228,7 +231,17 @@ impl<'a> Recorder<'a> {
             true => std::fs::create_dir_all(dir),
             false => Ok(()),
         };
-        made.and_then(|()| write_cloth_obj_with_uv(&path, sim.mesh(), sim.positions()))
+        let comments = self
+            .up_axis
+            .file_header(&format!("the cloth at {} step {}", self.stage, self.steps));
+        let positions = self.up_axis.turned_from_z_up(sim.positions());
+        let obj = ClothObj {
+            comments: &comments,
+            mesh: sim.mesh(),
+            positions: &positions,
+            panels: None,
+        };
+        made.and_then(|()| write_cloth_obj_with_uv(&path, &obj))
             .map_err(|e| format!("writing frame '{}': {e}", path.display()))?;
         let folder = dir
             .file_name()

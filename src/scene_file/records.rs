@@ -366,6 +366,14 @@ pub struct OutputSpec {
     /// Steps of each stage after which to record the largest warp and weft stretch (the
     /// source's table of stretch after N iterations).
     pub checkpoints: Vec<u64>,
+    /// The up axis of the OBJ and PLY files (the cloth, its frames, the bodies), said in
+    /// each file's header: z, the engine's own, or y, as Blender's, Maya's, Houdini's and
+    /// Marvelous Designer's importers expect, turned `(x, y, z) -> (x, z, -y)`. glTF is
+    /// always y up, as its specification says.
+    pub up_axis: UpAxis,
+    /// A garment's segmentation file (`segmentation.txt`): a line per vertex of the OBJ
+    /// and PLY naming its panel, or the panels a seam vertex joins.
+    pub segmentation: bool,
 }
 
 impl Default for OutputSpec {
@@ -379,6 +387,8 @@ impl Default for OutputSpec {
             image_size: [1600, 1000],
             frames_every: None,
             checkpoints: Vec::new(),
+            up_axis: UpAxis::Z,
+            segmentation: true,
         }
     }
 }

@@ -73,6 +73,8 @@ pub struct Checkpoint {
 /// The run's report (report.json).
 #[derive(Debug, Clone, Serialize)]
 pub struct RunReport {
+    /// The version of the engine that wrote it (the `cloth` crate's).
+    pub engine_version: &'static str,
     pub scene: String,
     pub outcome: RunOutcome,
     pub particles: usize,

@@ -16,6 +16,7 @@ use cloth_core::{
     body_intersections_by_edge, math::Vec3, self_intersecting_pairs, BodyIntersections, ClothMesh, Collider,
     StopReason, StrainReport,
 };
+use cloth_formats::panels::PanelLabels;
 use cloth_garment::sewing::{drape, sew};
 use cloth_garment::GarmentError;
 use std::path::Path;
@@ -26,6 +27,8 @@ pub struct RunResult {
     pub mesh: ClothMesh,
     pub positions: Vec<Vec3>,
     pub report: RunReport,
+    /// A garment's panels on `mesh` (`None` for a sheet).
+    pub panels: Option<PanelLabels>,
 }
 
 impl RunResult {
@@ -226,6 +229,7 @@ impl Prepared {
             _ => None,
         };
         let report = RunReport {
+            engine_version: env!("CARGO_PKG_VERSION"),
             scene: self.name,
             outcome,
             particles: mesh.vertex_count(),
@@ -254,10 +258,12 @@ impl Prepared {
             frames,
             warnings: self.warnings.iter().map(ToString::to_string).collect(),
         };
+        let panels = panels_of.and_then(|(of_triangle, names)| PanelLabels::new(names, of_triangle).ok());
         Ok(RunResult {
             mesh,
             positions,
             report,
+            panels,
         })
     }
 }

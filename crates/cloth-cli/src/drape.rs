@@ -35,6 +35,10 @@ pub struct DrapeArgs {
     /// glTF, z for the other formats).
     #[arg(long, value_enum)]
     pub body_up_axis: Option<Axis>,
+    /// The up axis of the OBJ and PLY outputs (default z, the engine's; y for Blender's,
+    /// Maya's, Houdini's and Marvelous Designer's importers, and the frame of a y-up body).
+    #[arg(long, value_enum)]
+    pub up_axis: Option<Axis>,
     /// A fabric preset (`cloth fabrics` lists them).
     #[arg(long, default_value = "cotton_poplin")]
     pub fabric: String,
@@ -262,15 +266,17 @@ pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
             eprintln!("warning: {}: {d}", body.display());
         }
     }
+    let axis = |a| match a {
+        Axis::Y => UpAxis::Y,
+        Axis::Z => UpAxis::Z,
+    };
     let request = DrapeRequest {
         body,
-        body_up_axis: args.body_up_axis.map(|a| match a {
-            Axis::Y => UpAxis::Y,
-            Axis::Z => UpAxis::Z,
-        }),
+        body_up_axis: args.body_up_axis.map(axis),
         fabric: args.fabric.clone(),
         edge_length: args.edge_length,
         body_min_thickness,
+        up_axis: args.up_axis.map(axis),
     };
     std::fs::create_dir_all(&args.out).map_err(|e| {
         Failure::input(format!(

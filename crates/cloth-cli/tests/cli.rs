@@ -244,6 +244,8 @@ fn a_run_writes_outputs_that_read_back() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(report["particles"], 144);
+    // The engine that wrote it, as `cloth --version` names it.
+    assert_eq!(report["engine_version"], env!("CARGO_PKG_VERSION"));
     assert_eq!(report["outcome"]["kind"], "finished");
     assert!(report["strain"]["max_warp"].as_f64().unwrap().is_finite());
     assert_eq!(report["stages"][0]["steps"], 60);
@@ -591,6 +593,8 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
             out.to_str().unwrap(),
             "--jobs",
             "2",
+            "--up-axis",
+            "y",
         ];
         a.extend_from_slice(extra);
         a.into_iter().map(String::from).collect::<Vec<_>>()
@@ -663,6 +667,53 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
     ] {
         assert!(out.join("rand_1_001").join(file).is_file(), "{file}");
     }
+    // Asked y up, as the body came: the OBJ says so and its waistband is at the body's
+    // waist in the body file's own frame; its panels are groups, named as in the pattern.
+    let obj = std::fs::read_to_string(out.join("rand_1_001/cloth.obj")).unwrap();
+    assert!(
+        obj.lines().take(2).any(|l| l.starts_with("# y up")),
+        "{}",
+        &obj[..200]
+    );
+    let band_mesh = tobj::load_obj(out.join("rand_1_001/cloth.obj"), &tobj::GPU_LOAD_OPTIONS)
+        .unwrap()
+        .0;
+    let body_mesh = tobj::load_obj(&body, &tobj::GPU_LOAD_OPTIONS).unwrap().0;
+    let heights = |models: &[tobj::Model]| {
+        let y: Vec<f64> = models
+            .iter()
+            .flat_map(|m| m.mesh.positions.chunks(3).map(|p| p[1]))
+            .collect();
+        (
+            y.iter().copied().fold(f64::MAX, f64::min),
+            y.iter().copied().fold(f64::MIN, f64::max),
+        )
+    };
+    let (band_low, band_high) = heights(&band_mesh);
+    let (feet, head) = heights(&body_mesh);
+    assert!(
+        band_low > feet + 0.4 * (head - feet) && band_high < head,
+        "waistband y {band_low}..{band_high}, body {feet}..{head}"
+    );
+    let groups: std::collections::BTreeSet<&str> = obj.lines().filter_map(|l| l.strip_prefix("g ")).collect();
+    let names: std::collections::BTreeSet<&str> =
+        panels.iter().map(|p| p["panel"].as_str().unwrap()).collect();
+    assert_eq!(groups, names);
+    // The segmentation has a line per vertex, each naming its panel or a seam's panels;
+    // the PLY has each vertex's panel.
+    let vertices = obj.lines().filter(|l| l.starts_with("v ")).count();
+    let segmentation = std::fs::read_to_string(out.join("rand_1_001/segmentation.txt")).unwrap();
+    assert_eq!(segmentation.lines().count(), vertices);
+    assert!(segmentation.lines().any(|l| l.contains(',')), "no seam vertex");
+    for line in segmentation.lines() {
+        assert!(line.split(',').all(|p| names.contains(p)), "{line}");
+    }
+    let ply = std::fs::read_to_string(out.join("rand_1_001/cloth.ply")).unwrap();
+    assert!(
+        ply.contains("property int panel") && ply.contains("comment y up"),
+        "{}",
+        &ply[..400]
+    );
     let table = std::fs::read_to_string(out.join("summary.md")).unwrap();
     assert!(
         table.contains("1 of 2 patterns finished") && table.contains("| rand_1_001 | finished"),

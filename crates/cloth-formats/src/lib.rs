@@ -6,6 +6,7 @@
 pub mod error;
 pub mod atomic;
 pub mod mesh;
+pub mod panels;
 pub mod obj;
 pub mod ply;
 pub mod stl;

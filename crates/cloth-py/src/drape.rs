@@ -41,6 +41,7 @@ pub fn drape_scenes(
         fabric: fabric.to_string(),
         edge_length,
         body_min_thickness,
+        up_axis: None,
     };
     let patterns = find_patterns(&inputs).map_err(input)?;
     Ok(patterns

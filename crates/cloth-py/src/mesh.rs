@@ -144,7 +144,14 @@ impl ClothMesh {
             Some(p) => points(p, "positions", Some(self.inner.vertex_count()))?,
             None => self.inner.positions().to_vec(),
         };
-        cloth::formats::obj::write_cloth_obj_with_uv(&path, &self.inner, &x).map_err(|e| {
+        let comments = cloth::scene_file::UpAxis::Z.file_header("the cloth");
+        let obj = cloth::formats::obj::ClothObj {
+            comments: &comments,
+            mesh: &self.inner,
+            positions: &x,
+            panels: None,
+        };
+        cloth::formats::obj::write_cloth_obj_with_uv(&path, &obj).map_err(|e| {
             pyo3::exceptions::PyOSError::new_err(format!("cannot write '{}': {e}", path.display()))
         })
     }

@@ -32,6 +32,9 @@ pub struct GlbMesh<'a> {
     pub texcoords: Option<&'a [[f32; 2]]>,
     /// Linear RGB.
     pub colours: Option<&'a [[f32; 3]]>,
+    /// Application-specific scalar attributes, one value per vertex: each name must start
+    /// with an underscore, as glTF asks of attributes it does not define.
+    pub scalars: &'a [(&'a str, &'a [f32])],
     /// Three per triangle.
     pub indices: &'a [u32],
     pub material: MaterialId,
@@ -88,7 +91,15 @@ impl GlbDocument {
             mesh.texcoords.map(<[_]>::len),
             mesh.colours.map(<[_]>::len),
         ];
-        if lengths.iter().flatten().any(|&l| l != n) || mesh.indices.len() % 3 != 0 {
+        let scalar_lengths = mesh.scalars.iter().map(|(_, values)| values.len());
+        if lengths
+            .iter()
+            .flatten()
+            .copied()
+            .chain(scalar_lengths)
+            .any(|l| l != n)
+            || mesh.indices.len() % 3 != 0
+        {
             return Err(Error::new(
                 ErrorKind::InvalidInput,
                 format!("mesh `{}`: attributes of different lengths", mesh.name),
@@ -100,6 +111,15 @@ impl GlbDocument {
                 format!("mesh `{}`: index {bad} of {n} vertices", mesh.name),
             ));
         }
+        if let Some((name, _)) = mesh.scalars.iter().find(|(name, _)| !name.starts_with('_')) {
+            return Err(Error::new(
+                ErrorKind::InvalidInput,
+                format!(
+                    "mesh `{}`: attribute `{name}` does not start with an underscore",
+                    mesh.name
+                ),
+            ));
+        }
         let mut attributes = vec![
             (Semantic::Positions, self.vec3(mesh.positions, true)),
             (Semantic::Normals, self.vec3(mesh.normals, false)),
@@ -109,6 +129,9 @@ impl GlbDocument {
         }
         if let Some(colours) = mesh.colours {
             attributes.push((Semantic::Colors(0), self.vec3(colours, false)));
+        }
+        for (name, values) in mesh.scalars {
+            attributes.push((Semantic::Extras(name[1..].to_string()), self.scalar(values)));
         }
         let indices = self.indices(mesh.indices);
         let primitive = Primitive {
@@ -167,29 +190,46 @@ impl GlbDocument {
     }
 
     fn vec2(&mut self, values: &[[f32; 2]]) -> Index<Accessor> {
-        let start = self.bin.len();
-        self.bin
-            .extend(values.iter().flatten().flat_map(|x| x.to_le_bytes()));
-        let accessor = self.accessor(
-            start,
+        let words = values.iter().flatten().map(|x| x.to_le_bytes());
+        self.packed(
+            words,
             values.len(),
             ComponentType::F32,
             Type::Vec2,
             Target::ArrayBuffer,
-        );
-        self.root.push(accessor)
+        )
+    }
+
+    fn scalar(&mut self, values: &[f32]) -> Index<Accessor> {
+        let words = values.iter().map(|x| x.to_le_bytes());
+        self.packed(
+            words,
+            values.len(),
+            ComponentType::F32,
+            Type::Scalar,
+            Target::ArrayBuffer,
+        )
     }
 
     fn indices(&mut self, values: &[u32]) -> Index<Accessor> {
+        let words = values.iter().map(|x| x.to_le_bytes());
+        let target = Target::ElementArrayBuffer;
+        self.packed(words, values.len(), ComponentType::U32, Type::Scalar, target)
+    }
+
+    /// `count` elements of type `ty`, their 4-byte components given in order, appended to
+    /// the buffer behind a new accessor.
+    fn packed(
+        &mut self,
+        words: impl Iterator<Item = [u8; 4]>,
+        count: usize,
+        component: ComponentType,
+        ty: Type,
+        target: Target,
+    ) -> Index<Accessor> {
         let start = self.bin.len();
-        self.bin.extend(values.iter().flat_map(|x| x.to_le_bytes()));
-        let accessor = self.accessor(
-            start,
-            values.len(),
-            ComponentType::U32,
-            Type::Scalar,
-            Target::ElementArrayBuffer,
-        );
+        self.bin.extend(words.flatten());
+        let accessor = self.accessor(start, count, component, ty, target);
         self.root.push(accessor)
     }
 
@@ -246,6 +286,7 @@ impl GlbDocument {
                 json["nodes"][i]["extras"] = extras;
             }
         }
+
         glb_container(&serde_json::to_vec(&json)?, &self.bin)
     }
 }

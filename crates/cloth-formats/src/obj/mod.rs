@@ -4,4 +4,4 @@ mod read;
 mod write;
 
 pub use read::{ObjFace, ObjFile, ObjSyntaxError};
-pub use write::{write_cloth_obj, write_cloth_obj_with_uv, write_objects, ObjObject};
+pub use write::{write_cloth_obj, write_cloth_obj_with_uv, write_objects, ClothObj, ObjObject};

@@ -2,6 +2,7 @@
 //! named triangle surfaces, one object each, to any writer.
 
 use crate::atomic::write_atomically;
+use crate::panels::PanelLabels;
 use cloth_core::{math::Vec3, ClothMesh};
 use std::io::Write;
 use std::path::Path;
@@ -18,17 +19,43 @@ pub fn write_cloth_obj(path: &Path, positions: &[Vec3], triangles: &[[usize; 3]]
     })
 }
 
+/// A cloth to write as OBJ with its material coordinates.
+#[derive(Debug, Clone, Copy)]
+pub struct ClothObj<'a> {
+    /// Header lines, each written as a `#` comment (the frame, the units).
+    pub comments: &'a [String],
+    pub mesh: &'a ClothMesh,
+    pub positions: &'a [Vec3],
+    /// A garment's panels, written as OBJ groups (`g name` before each run of a panel's
+    /// triangles), which importers can split the mesh by (Blender's "Split by Group").
+    pub panels: Option<&'a PanelLabels>,
+}
+
 /// Writes the cloth with its material coordinates as texture coordinates (`vt`, in
-/// metres), one per triangle corner, so the panels of a sewn garment keep their own.
-pub fn write_cloth_obj_with_uv(path: &Path, mesh: &ClothMesh, positions: &[Vec3]) -> std::io::Result<()> {
+/// metres), one per triangle corner, so the panels of a sewn garment keep their own. The
+/// faces are in the mesh's order, so face `k` is triangle `k`.
+pub fn write_cloth_obj_with_uv(path: &Path, obj: &ClothObj<'_>) -> std::io::Result<()> {
+    let mesh = obj.mesh;
     write_atomically(path, |out| {
-        write_vertices(out, positions)?;
+        for c in obj.comments {
+            writeln!(out, "# {}", c.replace(char::is_control, " "))?;
+        }
+        write_vertices(out, obj.positions)?;
         for t in 0..mesh.triangles().len() {
             for uv in mesh.corner_uv(t) {
                 writeln!(out, "vt {} {}", uv.x, uv.y)?;
             }
         }
+        let mut group = None;
         for (t, tri) in mesh.triangles().iter().enumerate() {
+            if let Some(panels) = obj.panels {
+                let p = panels.of_triangle().get(t).copied();
+                if p != group {
+                    group = p;
+                    let name = p.map_or("unlabelled", |p| panels.names()[p].as_str());
+                    writeln!(out, "g {}", group_name(name))?;
+                }
+            }
             let vt = 3 * t + 1;
             writeln!(
                 out,
@@ -43,6 +70,19 @@ pub fn write_cloth_obj_with_uv(path: &Path, mesh: &ClothMesh, positions: &[Vec3]
         }
         Ok(())
     })
+}
+
+/// An OBJ group's name: one word (`g a b` would be two groups), so whitespace becomes `_`.
+fn group_name(name: &str) -> String {
+    let word: String = name
+        .chars()
+        .map(|c| if c.is_whitespace() { '_' } else { c })
+        .collect();
+    if word.is_empty() {
+        "unnamed".into()
+    } else {
+        word
+    }
 }
 
 fn write_vertices(out: &mut dyn Write, positions: &[Vec3]) -> std::io::Result<()> {

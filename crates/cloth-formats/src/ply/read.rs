@@ -1,5 +1,5 @@
 //! Reading PLY, ASCII or binary: `vertex` elements with x, y, z (and, when the header has
-//! them, red/green/blue colours and the `strain` our output writes), `face` elements with a
+//! them, red/green/blue colours and the `strain` and `panel` our output writes), `face` elements with a
 //! `vertex_indices` (or `vertex_index`) list.
 
 use crate::error::{read_bytes, FormatError};
@@ -20,6 +20,9 @@ pub struct PlyMesh {
     pub colours: Option<Vec<[u8; 3]>>,
     /// Per vertex, when the header declares a `strain` property (%).
     pub strain: Option<Vec<f64>>,
+    /// Per vertex, when the header declares a `panel` property: a garment's panel, as our
+    /// output writes it.
+    pub panel: Option<Vec<i32>>,
 }
 
 impl PlyMesh {
@@ -69,6 +72,7 @@ impl PlyMesh {
             }
         }
         let has_strain = is_scalar(vertex_def, "strain");
+        let has_panel = is_scalar(vertex_def, "panel");
         let has_colours = ["red", "green", "blue"].iter().all(|c| is_scalar(vertex_def, c));
 
         let none = Vec::new();
@@ -78,6 +82,7 @@ impl PlyMesh {
             faces: Vec::new(),
             colours: has_colours.then(|| Vec::with_capacity(vertices.len())),
             strain: has_strain.then(|| Vec::with_capacity(vertices.len())),
+            panel: has_panel.then(|| Vec::with_capacity(vertices.len())),
         };
         for (i, v) in vertices.iter().enumerate() {
             let get = |name: &str| {
@@ -96,6 +101,13 @@ impl PlyMesh {
             mesh.positions.push(p);
             if let Some(strain) = &mut mesh.strain {
                 strain.push(get("strain")?);
+            }
+            if let Some(panel) = &mut mesh.panel {
+                let p = get("panel")?;
+                if p.fract() != 0.0 || p.abs() > f64::from(i32::MAX) {
+                    return Err(bad("vertex", i, format!("panel {p} is not an integer")));
+                }
+                panel.push(p as i32);
             }
             if let Some(colours) = &mut mesh.colours {
                 let channel = |name: &str| {
