@@ -4,19 +4,25 @@
 
 use super::frame::UpAxis;
 use super::observer::RunObserver;
-use super::records::OutputSpec;
+use super::records::{AnimationFormat, OutputSpec};
 use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport};
 use super::strain_summary::StrainSummary;
 use cloth_core::{math::Vec3, ClothMesh, Simulation, StepStats, Tangle};
 use cloth_formats::obj::{write_cloth_obj_with_uv, ClothObj};
+use cloth_formats::pc2::Pc2Writer;
 use std::ops::ControlFlow;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 pub(super) struct Recorder<'a> {
     observer: &'a mut dyn RunObserver,
     frames_every: u64,
     up_axis: UpAxis,
+    animation_format: Option<AnimationFormat>,
+    /// The current stage's animation file, from its first frame.
+    animation: Option<Pc2Writer>,
+    /// What went wrong finishing an animation file, for the report's warnings.
+    animation_errors: Vec<String>,
     checkpoints: &'a [u64],
     frames_dir: Option<&'a Path>,
     /// The last good state: the mesh is replaced when a stage changes it (welding), with
@@ -58,6 +64,8 @@ pub(super) struct Recorded {
     pub tangles: Vec<(&'static str, Tangle)>,
     /// Per particle of the last stage, whether it passes the bodies' thin parts for good.
     pub passes_thin_parts: Vec<bool>,
+    /// Animation files that could not be completed, and why.
+    pub animation_errors: Vec<String>,
 }
 
 impl<'a> Recorder<'a> {
@@ -71,8 +79,13 @@ impl<'a> Recorder<'a> {
     ) -> Self {
         Self {
             observer,
-            frames_every: output.frames_every.unwrap_or(0),
+            frames_every: output
+                .frames_every
+                .unwrap_or(if output.animation.is_some() { 1 } else { 0 }),
             up_axis: output.up_axis,
+            animation_format: output.animation,
+            animation: None,
+            animation_errors: Vec::new(),
             checkpoints: &output.checkpoints,
             frames_dir,
             mesh: mesh.clone(),
@@ -96,6 +109,7 @@ impl<'a> Recorder<'a> {
     }
 
     pub(super) fn begin(&mut self, stage: &'static str, max_steps: u64) {
+        self.finish_animation();
         self.stage = stage;
         self.stage_start = Instant::now();
         self.steps = 0;
@@ -106,8 +120,9 @@ impl<'a> Recorder<'a> {
         self.observer.stage(stage, max_steps);
     }
 
-    /// The stage's report, ended as `ended`.
-    pub(super) fn end(&self, ended: &'static str) -> StageReport {
+    /// The stage's report, ended as `ended`; its animation file is put in place.
+    pub(super) fn end(&mut self, ended: &'static str) -> StageReport {
+        self.finish_animation();
         StageReport {
             stage: self.stage,
             steps: self.steps,
@@ -154,7 +169,18 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    pub(super) fn finish(self) -> Recorded {
+    /// Completes the current stage's animation file, if it has one.
+    fn finish_animation(&mut self) {
+        if let Some(cache) = self.animation.take() {
+            if let Err(e) = cache.finish() {
+                self.animation_errors
+                    .push(format!("the {} stage's animation file: {e}", self.stage));
+            }
+        }
+    }
+
+    pub(super) fn finish(mut self) -> Recorded {
+        self.finish_animation();
         Recorded {
             mesh: self.mesh,
             seams: self.seams,
@@ -165,6 +191,7 @@ impl<'a> Recorder<'a> {
             frames: self.frames,
             tangles: self.tangles,
             passes_thin_parts: self.passes_thin_parts,
+            animation_errors: self.animation_errors,
         }
     }
 
@@ -225,36 +252,70 @@ impl<'a> Recorder<'a> {
         let Some(dir) = self.frames_dir else {
             return Ok(());
         };
-        let name = format!("frame_{:05}.obj", self.frames.len() + 1);
-        let path: PathBuf = dir.join(&name);
-        let made = match self.frames.is_empty() {
-            true => std::fs::create_dir_all(dir),
-            false => Ok(()),
-        };
-        let comments = self
-            .up_axis
-            .file_header(&format!("the cloth at {} step {}", self.stage, self.steps));
+        if self.frames.is_empty() {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| format!("creating the frames folder '{}': {e}", dir.display()))?;
+        }
         let positions = self.up_axis.turned_from_z_up(sim.positions());
-        let obj = ClothObj {
-            comments: &comments,
-            mesh: sim.mesh(),
-            positions: &positions,
-            panels: None,
-        };
-        made.and_then(|()| write_cloth_obj_with_uv(&path, &obj))
-            .map_err(|e| format!("writing frame '{}': {e}", path.display()))?;
         let folder = dir
             .file_name()
             .map(|f| f.to_string_lossy().into_owned())
             .unwrap_or_default();
+        let (name, sample) = match self.animation_format {
+            None => {
+                let name = format!("frame_{:05}.obj", self.frames.len() + 1);
+                let what = format!("the cloth at {} step {}", self.stage, self.steps);
+                self.write_obj(&dir.join(&name), &what, sim.mesh(), &positions)?;
+                (name, None)
+            }
+            Some(AnimationFormat::Pc2) => {
+                let name = format!("{}.pc2", self.stage);
+                let path = dir.join(&name);
+                if self.animation.is_none() {
+                    // The mesh the cache plays on: the stage's, as its first frame has it.
+                    let obj = format!("{}.obj", self.stage);
+                    let what = format!(
+                        "the cloth at {} step {}, the mesh of {name}",
+                        self.stage, self.steps
+                    );
+                    self.write_obj(&dir.join(&obj), &what, sim.mesh(), &positions)?;
+                    let cache = Pc2Writer::create(&path, positions.len(), 0.0, 1.0)
+                        .map_err(|e| format!("creating '{}': {e}", path.display()))?;
+                    self.animation = Some(cache);
+                }
+                let cache = self.animation.as_mut().expect("made above");
+                let sample = cache.samples();
+                let points: Vec<[f32; 3]> = positions
+                    .iter()
+                    .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+                    .collect();
+                cache
+                    .push(&points)
+                    .map_err(|e| format!("writing '{}': {e}", path.display()))?;
+                (name, Some(sample))
+            }
+        };
         self.frames.push(FrameRecord {
             file: format!("{folder}/{name}"),
             stage: self.stage,
             step: self.steps,
             time: sim.time(),
             self_intersections: sim.self_intersections().count,
+            sample,
         });
         Ok(())
+    }
+
+    /// The cloth as OBJ at `path`, in the output frame, its header saying `what` it is.
+    fn write_obj(&self, path: &Path, what: &str, mesh: &ClothMesh, positions: &[Vec3]) -> Result<(), String> {
+        let comments = self.up_axis.file_header(what);
+        let obj = ClothObj {
+            comments: &comments,
+            mesh,
+            positions,
+            panels: None,
+        };
+        write_cloth_obj_with_uv(path, &obj).map_err(|e| format!("writing frame '{}': {e}", path.display()))
     }
 }
 

@@ -345,6 +345,15 @@ fn leg_inset() -> f64 {
     0.05
 }
 
+/// An animation file's format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AnimationFormat {
+    /// A point cache, `frames/<stage>.pc2`, which Blender's Mesh Cache modifier plays on
+    /// the stage's mesh, `frames/<stage>.obj` (the same vertices in the same order).
+    Pc2,
+}
+
 /// What a run writes.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -361,8 +370,12 @@ pub struct OutputSpec {
     pub png: bool,
     /// The picture's width and height, pixels.
     pub image_size: [u32; 2],
-    /// Write the cloth as OBJ every this many steps of each stage (into `frames/`).
+    /// Record the cloth every this many steps of each stage (into `frames/`): as an OBJ
+    /// per frame, or into one animation file per stage (`animation`). With an animation
+    /// and no cadence, every step.
     pub frames_every: Option<u64>,
+    /// The frames as one animation file per stage rather than an OBJ each.
+    pub animation: Option<AnimationFormat>,
     /// Steps of each stage after which to record the largest warp and weft stretch (the
     /// source's table of stretch after N iterations).
     pub checkpoints: Vec<u64>,
@@ -386,6 +399,7 @@ impl Default for OutputSpec {
             png: true,
             image_size: [1600, 1000],
             frames_every: None,
+            animation: None,
             checkpoints: Vec::new(),
             up_axis: UpAxis::Z,
             segmentation: true,
@@ -447,6 +461,12 @@ mod tests {
         };
         assert!(matches!(&file.shape, BodyShape::File(f) if f.scale == 0.01 && f.path.ends_with("body.obj")));
         assert_eq!(file.placement.up_axis, Some(UpAxis::Y));
+        let with =
+            scene("[fabric]\npreset = \"silk\"\n[output]\nanimation = \"pc2\"\nup_axis = \"y\"\n").unwrap();
+        assert_eq!(with.output.animation, Some(AnimationFormat::Pc2));
+        assert_eq!(with.output.up_axis, UpAxis::Y);
+        let e = scene("[fabric]\npreset = \"silk\"\n[output]\nanimation = \"avi\"\n").unwrap_err();
+        assert!(e.contains("pc2"), "{e}");
         assert_eq!(file.placement.position, [0.0, 0.0, 1.0]);
         assert_eq!(file.contact.friction, Some(0.3));
         assert!(matches!(&sphere.shape, BodyShape::Sphere(s) if s.radius == 0.2));

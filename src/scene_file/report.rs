@@ -184,4 +184,6 @@ pub struct FrameRecord {
     pub time: f64,
     /// The cloth's edge-triangle pairs passing through each other in the frame.
     pub self_intersections: usize,
+    /// The frame's sample in the animation file `file` (from 0), when frames go to one.
+    pub sample: Option<u32>,
 }

@@ -166,6 +166,7 @@ impl Prepared {
             frames,
             tangles,
             passes_thin_parts,
+            animation_errors,
         } = rec.finish();
         // Names the piece of the cloth a triangle is of.
         let piece_of = |t: usize| match &panels_of {
@@ -256,7 +257,12 @@ impl Prepared {
             checkpoints,
             measurement,
             frames,
-            warnings: self.warnings.iter().map(ToString::to_string).collect(),
+            warnings: self
+                .warnings
+                .iter()
+                .map(ToString::to_string)
+                .chain(animation_errors)
+                .collect(),
         };
         let panels = panels_of.and_then(|(of_triangle, names)| PanelLabels::new(names, of_triangle).ok());
         Ok(RunResult {

@@ -372,30 +372,28 @@ fn signal_stops_the_run_and_writes_the_state_reached(signal: &str) {
     assert!(lowest < 0.35 - 1e-4, "lowest {lowest}");
 }
 
-#[test]
-fn frames_and_checkpoints_are_written_when_asked() {
-    let dir = scratch("frames");
+/// The small sheet run with `output` (the lines of its `[output]`, no picture or glTF),
+/// frames every 20 steps: its scratch folder (the output in `out`) and report, after
+/// checking it wrote 3 frames.
+fn sheet_frames(name: &str, output: &str) -> (Scratch, serde_json::Value) {
+    let dir = scratch(name);
     let scene = dir.join("sheet.toml");
-    std::fs::write(
-        &scene,
-        format!(
-            "{SHEET}
-[output]
-frames_every = 20
-checkpoints = [1, 30, 60]
-glb = false
-png = false
-"
-        ),
-    )
-    .unwrap();
+    let text = format!("{SHEET}\n[output]\nframes_every = 20\nglb = false\npng = false\n{output}");
+    std::fs::write(&scene, text).unwrap();
     let out = dir.join("out");
     let o = run_quietly(&scene, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["frames"].as_array().unwrap().len(), 3, "{report}");
+    (dir, report)
+}
+
+#[test]
+fn frames_and_checkpoints_are_written_when_asked() {
+    let (dir, report) = sheet_frames("frames", "checkpoints = [1, 30, 60]\n");
+    let out = dir.join("out");
     let frames = report["frames"].as_array().unwrap();
-    assert_eq!(frames.len(), 3, "{report}");
     for (k, f) in frames.iter().enumerate() {
         assert_eq!(f["step"].as_u64(), Some(20 * (k as u64 + 1)));
         assert_eq!(f["self_intersections"], 0);
@@ -417,6 +415,48 @@ png = false
         "{md}"
     );
     assert!(!out.join("scene.glb").exists() && !out.join("render.png").exists());
+}
+
+/// Asked for an animation, the frames go into one point cache per stage, beside the mesh
+/// it plays on, in the output frame; the report says which sample each frame is.
+#[test]
+fn frames_go_into_a_point_cache_when_asked() {
+    let (dir, report) = sheet_frames("pc2", "animation = \"pc2\"\nup_axis = \"y\"\n");
+    let out = dir.join("out");
+    let frames = report["frames"].as_array().unwrap();
+    for (k, f) in frames.iter().enumerate() {
+        assert_eq!(f["file"], "frames/running.pc2");
+        assert_eq!(f["sample"].as_u64(), Some(k as u64));
+        assert_eq!(f["step"].as_u64(), Some(20 * (k as u64 + 1)));
+    }
+    assert!(!out.join("frames/frame_00001.obj").exists(), "no OBJ per frame");
+    let cache = cloth::formats::pc2::Pc2::read(&out.join("frames/running.pc2")).unwrap();
+    assert_eq!(cache.samples.len(), 3);
+    let (mesh, _) = tobj::load_obj(out.join("frames/running.obj"), &tobj::LoadOptions::default()).unwrap();
+    assert_eq!(cache.samples[0].len(), 144);
+    assert_eq!(
+        mesh[0].mesh.positions.len(),
+        3 * 144,
+        "the mesh the cache plays on"
+    );
+    // The last frame is the final state, in the same (y-up) frame as cloth.obj.
+    // In the file's own order (tobj numbers vertices as faces first use them).
+    let obj = std::fs::read_to_string(out.join("cloth.obj")).unwrap();
+    assert!(obj.contains("# y up"), "{}", &obj[..200]);
+    let vertices: Vec<Vec<f64>> = obj
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(vertices.len(), cache.samples[2].len());
+    for (p, q) in vertices.iter().zip(&cache.samples[2]) {
+        for k in 0..3 {
+            assert!((p[k] - f64::from(q[k])).abs() < 1e-6, "{p:?} against {q:?}");
+        }
+    }
+    // The sheet falls: down its y, now up.
+    let mean_y = |s: &[[f32; 3]]| s.iter().map(|p| f64::from(p[1])).sum::<f64>() / s.len() as f64;
+    assert!(mean_y(&cache.samples[2]) < mean_y(&cache.samples[0]));
 }
 
 #[test]

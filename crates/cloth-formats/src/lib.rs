@@ -10,6 +10,7 @@ pub mod panels;
 pub mod obj;
 pub mod ply;
 pub mod stl;
+pub mod pc2;
 pub mod gltf;
 pub mod by_extension;
 
