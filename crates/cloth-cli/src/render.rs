@@ -2,6 +2,7 @@
 //! strain (as `cloth run` writes) keeps its colours and gets the legend; meshes without
 //! colours are told apart by neutral tints.
 
+use crate::drape::Axis;
 use crate::failure::Failure;
 use cloth::render::{
     check_image_size, figure, read_render_mesh, Colouring, Legend, MeshColours, Panel, View, NEUTRAL_GREY,
@@ -39,6 +40,10 @@ pub struct RenderArgs {
     /// Degrees above the horizon (-89 to 89).
     #[arg(long, default_value_t = View::default().elevation_deg, allow_negative_numbers = true)]
     pub elevation: f64,
+    /// The files' up axis: y for outputs written with `[output] up_axis = "y"` and for
+    /// most avatar assets, turned to z up as a scene reads them; z (the engine's) by default.
+    #[arg(long, value_enum, default_value = "z")]
+    pub up_axis: Axis,
 }
 
 pub fn render(args: &RenderArgs) -> Result<(), Failure> {
@@ -55,6 +60,12 @@ pub fn render(args: &RenderArgs) -> Result<(), Failure> {
     let mut plain = 0;
     for path in &args.files {
         let mut loaded = read_render_mesh(path).map_err(Failure::input)?;
+        if let Axis::Y = args.up_axis {
+            let turn = cloth::scene_file::UpAxis::Y.to_z_up();
+            for p in &mut loaded.mesh.positions {
+                *p = turn * *p;
+            }
+        }
         if loaded.colouring == Colouring::Plain {
             loaded.mesh.colours = MeshColours::Uniform(TINTS[plain % TINTS.len()]);
             plain += 1;

@@ -86,6 +86,59 @@ fn renders_an_obj_and_a_ply_to_a_png_of_the_requested_size() {
     assert_eq!(names.len(), 3, "{names:?}");
 }
 
+/// The RGB pixels of the PNG at `path`.
+fn pixels(path: &std::path::Path) -> Vec<u8> {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut pixels).unwrap();
+    pixels.truncate(info.buffer_size());
+    pixels
+}
+
+/// A y-up file drawn with `--up-axis y` is the picture of the same mesh z-up.
+#[test]
+fn a_y_up_file_draws_upright_when_told() {
+    let dir = folder("y_up");
+    let (z_up, _) = write_inputs(&dir);
+    // The tetrahedron turned (x, y, z) -> (x, z, -y), as `[output] up_axis = "y"` writes.
+    let y_up = dir.join("y.obj");
+    std::fs::write(
+        &y_up,
+        "v 0 0 0\nv 0.5 0 0\nv 0 0 -0.5\nv 0 0.5 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    let draw = |file: &PathBuf, png: &str, extra: &[&str]| {
+        let out = cloth()
+            .arg("render")
+            .arg(file)
+            .arg("-o")
+            .arg(dir.join(png))
+            .args(["--width", "320", "--height", "200"])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        pixels(&dir.join(png))
+    };
+    let upright = draw(&z_up, "z.png", &[]);
+    let turned = draw(&y_up, "y.png", &["--up-axis", "y"]);
+    let lying = draw(&y_up, "lying.png", &[]);
+    let differ = |a: &[u8], b: &[u8]| {
+        a.chunks_exact(3)
+            .zip(b.chunks_exact(3))
+            .filter(|(p, q)| p != q)
+            .count()
+    };
+    // The title names the file, so a few pixels differ; the mesh does not.
+    let turned_off = differ(&upright, &turned);
+    let lying_off = differ(&upright, &lying);
+    assert!(
+        10 * turned_off < lying_off,
+        "turned: {turned_off} pixels differ, lying down: {lying_off}"
+    );
+}
+
 #[test]
 fn a_missing_file_is_an_input_error_that_names_it() {
     let dir = folder("missing");
