@@ -9,6 +9,7 @@ use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport};
 use super::strain_summary::StrainSummary;
 use cloth_core::{math::Vec3, ClothMesh, Simulation, StepStats, Tangle};
 use cloth_formats::obj::{write_cloth_obj_with_uv, ClothObj};
+use cloth_formats::panels::PanelLabels;
 use cloth_formats::pc2::Pc2Writer;
 use std::ops::ControlFlow;
 use std::path::Path;
@@ -23,6 +24,9 @@ pub(super) struct Recorder<'a> {
     animation: Option<Pc2Writer>,
     /// What went wrong finishing an animation file, for the report's warnings.
     animation_errors: Vec<String>,
+    /// A garment's panels, the frames' OBJ groups (its triangles keep their order through
+    /// welding, so one labelling serves every stage).
+    panels: Option<PanelLabels>,
     checkpoints: &'a [u64],
     frames_dir: Option<&'a Path>,
     /// The last good state: the mesh is replaced when a stage changes it (welding), with
@@ -86,6 +90,7 @@ impl<'a> Recorder<'a> {
             animation_format: output.animation,
             animation: None,
             animation_errors: Vec::new(),
+            panels: None,
             checkpoints: &output.checkpoints,
             frames_dir,
             mesh: mesh.clone(),
@@ -106,6 +111,11 @@ impl<'a> Recorder<'a> {
             tangles: Vec::new(),
             passes_thin_parts: Vec::new(),
         }
+    }
+
+    /// Labels the frames' OBJ with a garment's panels.
+    pub(super) fn label_panels(&mut self, panels: PanelLabels) {
+        self.panels = Some(panels);
     }
 
     pub(super) fn begin(&mut self, stage: &'static str, max_steps: u64) {
@@ -313,7 +323,7 @@ impl<'a> Recorder<'a> {
             comments: &comments,
             mesh,
             positions,
-            panels: None,
+            panels: self.panels.as_ref(),
         };
         write_cloth_obj_with_uv(path, &obj).map_err(|e| format!("writing frame '{}': {e}", path.display()))
     }

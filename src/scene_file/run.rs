@@ -75,6 +75,11 @@ impl Prepared {
                     &garment.mesh,
                     garment.mesh.positions(),
                 );
+                if let Ok(labels) =
+                    PanelLabels::new(garment.panel_names.clone(), garment.triangle_panel.clone())
+                {
+                    rec.label_panels(labels);
+                }
                 let (sewing, drape_settings) = (scene.sewing_settings(), scene.drape_settings());
                 rec.begin("sewing", sewing.max_steps);
                 let sewn = sew(

@@ -765,6 +765,28 @@ fn drape_runs_many_patterns_into_folders_with_one_summary() {
     // The scene written beside the outputs runs the same drape again.
     let again = cloth(&["check", out.join("rand_1_001/scene.toml").to_str().unwrap()]);
     assert!(again.status.success(), "{}", stderr(&again));
+    // Run again with frames: each frame's OBJ has the panels as groups, in both stages
+    // (the sewn garment's triangles keep their panels through welding).
+    let framed = dir.join("framed.toml");
+    std::fs::write(
+        &framed,
+        scene.replace("[output]\n", "[output]\nframes_every = 10\n"),
+    )
+    .unwrap();
+    let o = run_quietly(&framed, &dir.join("framed"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("framed/report.json")).unwrap()).unwrap();
+    let frames = report["frames"].as_array().unwrap();
+    let stages: std::collections::BTreeSet<&str> =
+        frames.iter().map(|f| f["stage"].as_str().unwrap()).collect();
+    assert_eq!(stages, ["draping", "sewing"].into_iter().collect(), "{frames:?}");
+    for f in frames {
+        let text = std::fs::read_to_string(dir.join("framed").join(f["file"].as_str().unwrap())).unwrap();
+        let groups: std::collections::BTreeSet<&str> =
+            text.lines().filter_map(|l| l.strip_prefix("g ")).collect();
+        assert_eq!(groups, names, "{}", f["file"]);
+    }
 
     // Again: the finished pattern is skipped, the broken one tried and refused again.
     let o = run(&[]);
