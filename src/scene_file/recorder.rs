@@ -26,7 +26,7 @@ pub(super) struct Recorder<'a> {
     animation_errors: Vec<String>,
     /// A garment's panels, the frames' OBJ groups (its triangles keep their order through
     /// welding, so one labelling serves every stage).
-    panels: Option<PanelLabels>,
+    panels: Option<&'a PanelLabels>,
     checkpoints: &'a [u64],
     frames_dir: Option<&'a Path>,
     /// The last good state: the mesh is replaced when a stage changes it (welding), with
@@ -114,8 +114,8 @@ impl<'a> Recorder<'a> {
     }
 
     /// Labels the frames' OBJ with a garment's panels.
-    pub(super) fn label_panels(&mut self, panels: PanelLabels) {
-        self.panels = Some(panels);
+    pub(super) fn label_panels(&mut self, panels: Option<&'a PanelLabels>) {
+        self.panels = panels;
     }
 
     pub(super) fn begin(&mut self, stage: &'static str, max_steps: u64) {
@@ -323,7 +323,7 @@ impl<'a> Recorder<'a> {
             comments: &comments,
             mesh,
             positions,
-            panels: self.panels.as_ref(),
+            panels: self.panels,
         };
         write_cloth_obj_with_uv(path, &obj).map_err(|e| format!("writing frame '{}': {e}", path.display()))
     }

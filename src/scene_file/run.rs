@@ -63,10 +63,10 @@ impl Prepared {
         let mut sheet_test = None;
         // A garment's panel of each triangle, and the panels' names (its panels keep their
         // triangles' order through welding).
-        let mut panels_of: Option<(Vec<usize>, Vec<String>)> = None;
+        let labels: Option<PanelLabels>;
         let (settings, rec) = match self.cloth {
             PreparedCloth::Garment { garment, fabrics } => {
-                panels_of = Some((garment.triangle_panel.clone(), garment.panel_names.clone()));
+                labels = PanelLabels::new(garment.panel_names.clone(), garment.triangle_panel.clone()).ok();
                 attached_particles = Some(garment.attached.iter().map(|(p, _)| p.len()).sum());
                 let mut rec = Recorder::new(
                     observer,
@@ -75,11 +75,7 @@ impl Prepared {
                     &garment.mesh,
                     garment.mesh.positions(),
                 );
-                if let Ok(labels) =
-                    PanelLabels::new(garment.panel_names.clone(), garment.triangle_panel.clone())
-                {
-                    rec.label_panels(labels);
-                }
+                rec.label_panels(labels.as_ref());
                 let (sewing, drape_settings) = (scene.sewing_settings(), scene.drape_settings());
                 rec.begin("sewing", sewing.max_steps);
                 let sewn = sew(
@@ -140,6 +136,7 @@ impl Prepared {
                 )
             }
             PreparedCloth::Sheet { builder, test } => {
+                labels = None;
                 sheet_test = test;
                 let mut sim = builder.build().map_err(|source| {
                     SceneFileError::new(&scene.name, None, SceneErrorKind::Param(source))
@@ -174,8 +171,8 @@ impl Prepared {
             animation_errors,
         } = rec.finish();
         // Names the piece of the cloth a triangle is of.
-        let piece_of = |t: usize| match &panels_of {
-            Some((panels, names)) => format!("panel '{}'", names[panels[t]]),
+        let piece_of = |t: usize| match &labels {
+            Some(l) => format!("panel '{}'", l.names()[l.of_triangle()[t]]),
             None => format!("the piece of triangle {t}"),
         };
         let tangles = tangles
@@ -194,8 +191,9 @@ impl Prepared {
         let body: BodyIntersections = body_edges.iter().map(|(_, found)| *found).sum();
         let strain = StrainReport::new(&mesh, &positions);
         let strain_summary = StrainSummary::from_report(&strain);
-        let (panels, fit, verdict) = match &panels_of {
-            Some((triangle_panel, names)) => {
+        let (panels, fit, verdict) = match &labels {
+            Some(l) => {
+                let (triangle_panel, names) = (l.of_triangle(), l.names());
                 let panels = panel_reports(names, triangle_panel, &mesh, &strain, &self_pairs, &body_edges);
                 // A garment worn through the body does not show how its cut fits it: a
                 // cuff zipped through the forearm (GarmentCode's rand_1_094) encloses a
@@ -269,12 +267,11 @@ impl Prepared {
                 .chain(animation_errors)
                 .collect(),
         };
-        let panels = panels_of.and_then(|(of_triangle, names)| PanelLabels::new(names, of_triangle).ok());
         Ok(RunResult {
             mesh,
             positions,
             report,
-            panels,
+            panels: labels,
         })
     }
 }
