@@ -15,11 +15,10 @@
 use cloth_collide::TriSurface;
 use cloth_core::{math::Vec3, ClothMesh};
 use cloth_formats::atomic::write_atomically;
-use cloth_formats::gltf::{vertex_normals, y_up, GlbDocument, GlbMaterial, GlbMesh};
+use cloth_formats::gltf::{vertex_normals, y_up, ClothVertices, GlbDocument, GlbMaterial, GlbMesh};
 use cloth_formats::panels::PanelLabels;
 use cloth_render::strain_colours::{strain_colour, vertex_strain, FULL_SCALE_PERCENT};
 use serde_json::json;
-use std::collections::HashMap;
 use std::io::{Error, ErrorKind};
 use std::path::Path;
 
@@ -64,9 +63,7 @@ fn glb_bytes(cloth: &GlbCloth<'_>, bodies: &[(String, TriSurface)]) -> std::io::
     let positions = y_up(cloth.positions, "cloth")?;
     let normals = vertex_normals(cloth.positions, mesh.triangles().iter().copied());
     let strain = vertex_colours(mesh, cloth.positions);
-    let split = Split::new(mesh)?;
-    let per_split =
-        |values: &[[f32; 3]]| -> Vec<[f32; 3]> { split.source.iter().map(|&v| values[v]).collect() };
+    let split = ClothVertices::new(mesh)?;
     let mut extras = json!({
         "strain_full_scale_percent": FULL_SCALE_PERCENT,
         "COLOR_0": "strain: mean over the vertex's triangles of max(warp, weft, 0) %, \
@@ -76,23 +73,20 @@ fn glb_bytes(cloth: &GlbCloth<'_>, bodies: &[(String, TriSurface)]) -> std::io::
     let panel_of: Vec<f32>;
     let mut scalars: Vec<(&str, &[f32])> = Vec::new();
     if let Some(panels) = cloth.panels {
-        panel_of = split
-            .triangle
-            .iter()
-            .map(|&t| panels.of_triangle().get(t).map_or(-1.0, |&p| p as f32))
-            .collect();
+        panel_of = split.panel_attribute(panels);
         scalars.push(("_PANEL", &panel_of));
         extras["_PANEL"] = json!("the vertex's panel: an index into `panels`");
         extras["panels"] = json!(panels.names());
     }
     doc.add_mesh(GlbMesh {
         name: "cloth",
-        positions: &per_split(&positions),
-        normals: &per_split(&normals),
-        texcoords: Some(&split.uv),
-        colours: Some(&per_split(&strain)),
+        positions: &split.gather(&positions),
+        normals: &split.gather(&normals),
+        texcoords: Some(split.uv()),
+        colours: Some(&split.gather(&strain)),
         scalars: &scalars,
-        indices: &split.indices,
+        targets: &[],
+        indices: split.indices(),
         material: cloth_material,
         extras: Some(extras),
     })?;
@@ -114,6 +108,7 @@ fn glb_bytes(cloth: &GlbCloth<'_>, bodies: &[(String, TriSurface)]) -> std::io::
                 texcoords: None,
                 colours: None,
                 scalars: &[],
+                targets: &[],
                 indices: &indices,
                 material: grey,
                 extras: None,
@@ -121,52 +116,6 @@ fn glb_bytes(cloth: &GlbCloth<'_>, bodies: &[(String, TriSurface)]) -> std::io::
         }
     }
     doc.into_bytes()
-}
-
-/// The cloth's glTF vertices: one per distinct (vertex, material coordinate) of the
-/// triangle corners, so a seam vertex is split into one per panel.
-struct Split {
-    /// The cloth vertex of each glTF vertex ...
-    source: Vec<usize>,
-    /// ... and the first triangle with a corner at it (all of them are one panel's).
-    triangle: Vec<usize>,
-    uv: Vec<[f32; 2]>,
-    /// Three per triangle, in the mesh's order.
-    indices: Vec<u32>,
-}
-
-impl Split {
-    fn new(mesh: &ClothMesh) -> std::io::Result<Self> {
-        // Keyed on the exact bits, as ClothMesh::cut_at_seams is: the corners of one panel
-        // at a vertex carry the very same coordinates.
-        let mut ids: HashMap<(usize, [u64; 2]), u32> = HashMap::new();
-        let mut split = Split {
-            source: Vec::new(),
-            triangle: Vec::new(),
-            uv: Vec::new(),
-            indices: Vec::with_capacity(3 * mesh.triangles().len()),
-        };
-        for (t, tri) in mesh.triangles().iter().enumerate() {
-            for (&v, c) in tri.iter().zip(mesh.corner_uv(t)) {
-                let key = (v, [c.x.to_bits(), c.y.to_bits()]);
-                let id = match ids.get(&key) {
-                    Some(&id) => id,
-                    None => {
-                        let id = u32::try_from(split.source.len()).map_err(|_| {
-                            Error::new(ErrorKind::InvalidInput, "too many cloth vertices for glTF")
-                        })?;
-                        split.source.push(v);
-                        split.triangle.push(t);
-                        split.uv.push([c.x as f32, c.y as f32]);
-                        ids.insert(key, id);
-                        id
-                    }
-                };
-                split.indices.push(id);
-            }
-        }
-        Ok(split)
-    }
 }
 
 /// Each vertex's strain colour as the PLY has it, in linear RGB: glTF vertex colours are

@@ -8,6 +8,7 @@ use super::records::{AnimationFormat, OutputSpec};
 use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport};
 use super::strain_summary::StrainSummary;
 use cloth_core::{math::Vec3, ClothMesh, Simulation, StepStats, Tangle};
+use cloth_formats::gltf::GlbAnimationWriter;
 use cloth_formats::obj::{write_cloth_obj_with_uv, ClothObj};
 use cloth_formats::panels::PanelLabels;
 use cloth_formats::pc2::Pc2Writer;
@@ -21,7 +22,7 @@ pub(super) struct Recorder<'a> {
     up_axis: UpAxis,
     animation_format: Option<AnimationFormat>,
     /// The current stage's animation file, from its first frame.
-    animation: Option<Pc2Writer>,
+    animation: Option<AnimationFile>,
     /// What went wrong finishing an animation file, for the report's warnings.
     animation_errors: Vec<String>,
     /// A garment's panels, the frames' OBJ groups (its triangles keep their order through
@@ -53,6 +54,21 @@ pub(super) struct Recorder<'a> {
     /// The pieces of the cloth found through each other at the start of each stage.
     tangles: Vec<(&'static str, Tangle)>,
     passes_thin_parts: Vec<bool>,
+}
+
+/// An animation file being written.
+enum AnimationFile {
+    Pc2(Pc2Writer),
+    Gltf(GlbAnimationWriter),
+}
+
+impl AnimationFile {
+    fn finish(self) -> std::io::Result<()> {
+        match self {
+            Self::Pc2(cache) => cache.finish(),
+            Self::Gltf(animation) => animation.finish(),
+        }
+    }
 }
 
 /// What a run leaves: its last good state and what was recorded on the way.
@@ -291,9 +307,11 @@ impl<'a> Recorder<'a> {
                     self.write_obj(&dir.join(&obj), &what, sim.mesh(), &positions)?;
                     let cache = Pc2Writer::create(&path, positions.len(), 0.0, 1.0)
                         .map_err(|e| format!("creating '{}': {e}", path.display()))?;
-                    self.animation = Some(cache);
+                    self.animation = Some(AnimationFile::Pc2(cache));
                 }
-                let cache = self.animation.as_mut().expect("made above");
+                let Some(AnimationFile::Pc2(cache)) = self.animation.as_mut() else {
+                    unreachable!("a stage's animation is of the scene's one format");
+                };
                 let sample = cache.samples();
                 let points: Vec<[f32; 3]> = positions
                     .iter()
@@ -301,6 +319,26 @@ impl<'a> Recorder<'a> {
                     .collect();
                 cache
                     .push(&points)
+                    .map_err(|e| format!("writing '{}': {e}", path.display()))?;
+                (name, Some(sample))
+            }
+            Some(AnimationFormat::Gltf) => {
+                // glTF is y-up whatever the OBJ's frame: it turns the engine's positions
+                // itself.
+                let name = format!("{}.glb", self.stage);
+                let path = dir.join(&name);
+                if self.animation.is_none() {
+                    let generator = format!("cloth {}", env!("CARGO_PKG_VERSION"));
+                    let animation = GlbAnimationWriter::create(&path, sim.mesh(), self.panels, generator)
+                        .map_err(|e| format!("creating '{}': {e}", path.display()))?;
+                    self.animation = Some(AnimationFile::Gltf(animation));
+                }
+                let Some(AnimationFile::Gltf(animation)) = self.animation.as_mut() else {
+                    unreachable!("a stage's animation is of the scene's one format");
+                };
+                let sample = animation.frames() as u32;
+                animation
+                    .push(sim.time(), sim.positions())
                     .map_err(|e| format!("writing '{}': {e}", path.display()))?;
                 (name, Some(sample))
             }

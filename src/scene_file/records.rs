@@ -352,6 +352,10 @@ pub enum AnimationFormat {
     /// A point cache, `frames/<stage>.pc2`, which Blender's Mesh Cache modifier plays on
     /// the stage's mesh, `frames/<stage>.obj` (the same vertices in the same order).
     Pc2,
+    /// A glTF binary, `frames/<stage>.glb`: the first frame's mesh, each later frame a
+    /// morph target, and an animation of their weights over the simulated time, which
+    /// Blender's glTF importer and three.js play; at most 150 frames, evenly chosen.
+    Gltf,
 }
 
 /// What a run writes.
@@ -465,8 +469,10 @@ mod tests {
             scene("[fabric]\npreset = \"silk\"\n[output]\nanimation = \"pc2\"\nup_axis = \"y\"\n").unwrap();
         assert_eq!(with.output.animation, Some(AnimationFormat::Pc2));
         assert_eq!(with.output.up_axis, UpAxis::Y);
+        let gltf = scene("[fabric]\npreset = \"silk\"\n[output]\nanimation = \"gltf\"\n").unwrap();
+        assert_eq!(gltf.output.animation, Some(AnimationFormat::Gltf));
         let e = scene("[fabric]\npreset = \"silk\"\n[output]\nanimation = \"avi\"\n").unwrap_err();
-        assert!(e.contains("pc2"), "{e}");
+        assert!(e.contains("pc2") && e.contains("gltf"), "{e}");
         assert_eq!(file.placement.position, [0.0, 0.0, 1.0]);
         assert_eq!(file.contact.friction, Some(0.3));
         assert!(matches!(&sphere.shape, BodyShape::Sphere(s) if s.radius == 0.2));

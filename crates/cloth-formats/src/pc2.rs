@@ -5,9 +5,9 @@
 //! come, so a long run never holds more than one in memory, and read back for tests and
 //! tools.
 
-use crate::error::{read_bytes, FormatError};
+use crate::error::FormatError;
 use std::fs::File;
-use std::io::{BufWriter, Seek, SeekFrom, Write};
+use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 const SIGNATURE: &[u8; 12] = b"POINTCACHE2\0";
@@ -107,7 +107,86 @@ impl Drop for Pc2Writer {
     }
 }
 
-/// A PC2 file read back.
+/// A PC2 file open for reading one sample at a time, so a long cache need not fit in
+/// memory.
+#[derive(Debug)]
+pub struct Pc2Reader {
+    path: PathBuf,
+    file: File,
+    pub points: usize,
+    pub start_frame: f32,
+    pub sample_rate: f32,
+    pub samples: usize,
+}
+
+impl Pc2Reader {
+    /// Reads and checks the header: the file must hold exactly the samples it announces.
+    pub fn open(path: &Path) -> Result<Self, FormatError> {
+        let io = |source| FormatError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let parse = |message: String| FormatError::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message,
+        };
+        let mut file = File::open(path).map_err(io)?;
+        let length = file.metadata().map_err(io)?.len();
+        let mut header = [0u8; HEADER_BYTES];
+        if length < HEADER_BYTES as u64 || file.read_exact(&mut header).is_err() || &header[..12] != SIGNATURE
+        {
+            return Err(parse("not a PC2 file: no POINTCACHE2 header".into()));
+        }
+        let word = |at: usize| <[u8; 4]>::try_from(&header[at..at + 4]).expect("4 bytes");
+        let version = u32::from_le_bytes(word(12));
+        if version != 1 {
+            return Err(parse(format!("PC2 version {version}; only 1 is known")));
+        }
+        let points = u32::from_le_bytes(word(16)) as u64;
+        let samples = u32::from_le_bytes(word(28)) as u64;
+        if HEADER_BYTES as u64 + 12 * points * samples != length {
+            return Err(parse(format!(
+                "{samples} samples of {points} vertices do not fill the file's {length} bytes"
+            )));
+        }
+        Ok(Self {
+            path: path.to_path_buf(),
+            file,
+            points: points as usize,
+            start_frame: f32::from_le_bytes(word(20)),
+            sample_rate: f32::from_le_bytes(word(24)),
+            samples: samples as usize,
+        })
+    }
+
+    /// Sample `k`'s positions.
+    pub fn sample(&mut self, k: usize) -> Result<Vec<[f32; 3]>, FormatError> {
+        if k >= self.samples {
+            return Err(FormatError::Parse {
+                path: self.path.clone(),
+                line: None,
+                message: format!("no sample {k} in a cache of {}", self.samples),
+            });
+        }
+        let mut bytes = vec![0u8; 12 * self.points];
+        let at = HEADER_BYTES as u64 + (k * bytes.len()) as u64;
+        self.file
+            .seek(SeekFrom::Start(at))
+            .and_then(|_| self.file.read_exact(&mut bytes))
+            .map_err(|source| FormatError::Io {
+                path: self.path.clone(),
+                source,
+            })?;
+        let float = |b: &[u8]| f32::from_le_bytes(b.try_into().expect("4 bytes"));
+        Ok(bytes
+            .chunks_exact(12)
+            .map(|p| [float(&p[0..4]), float(&p[4..8]), float(&p[8..12])])
+            .collect())
+    }
+}
+
+/// A PC2 file read back whole.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Pc2 {
     pub start_frame: f32,
@@ -118,51 +197,14 @@ pub struct Pc2 {
 
 impl Pc2 {
     pub fn read(path: &Path) -> Result<Self, FormatError> {
-        let bytes = read_bytes(path)?;
-        let parse = |message: String| FormatError::Parse {
-            path: path.to_path_buf(),
-            line: None,
-            message,
-        };
-        if bytes.len() < HEADER_BYTES || &bytes[..12] != SIGNATURE {
-            return Err(parse("not a PC2 file: no POINTCACHE2 header".into()));
-        }
-        let word = |at: usize| <[u8; 4]>::try_from(&bytes[at..at + 4]).expect("4 bytes");
-        let version = u32::from_le_bytes(word(12));
-        if version != 1 {
-            return Err(parse(format!("PC2 version {version}; only 1 is known")));
-        }
-        let points = u32::from_le_bytes(word(16)) as usize;
-        let start_frame = f32::from_le_bytes(word(20));
-        let sample_rate = f32::from_le_bytes(word(24));
-        let count = u32::from_le_bytes(word(28)) as usize;
-        let expected = points
-            .checked_mul(count)
-            .and_then(|n| n.checked_mul(12))
-            .and_then(|n| n.checked_add(HEADER_BYTES));
-        if expected != Some(bytes.len()) {
-            return Err(parse(format!(
-                "{count} samples of {points} vertices do not fill the file's {} bytes",
-                bytes.len()
-            )));
-        }
-        let floats: Vec<f32> = bytes[HEADER_BYTES..]
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes(b.try_into().expect("4 bytes")))
-            .collect();
-        let samples = floats
-            .chunks_exact(3 * points.max(1))
-            .take(count)
-            .map(|s| s.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect())
-            .collect();
+        let mut reader = Pc2Reader::open(path)?;
+        let samples = (0..reader.samples)
+            .map(|k| reader.sample(k))
+            .collect::<Result<_, _>>()?;
         Ok(Self {
-            start_frame,
-            sample_rate,
-            samples: if points == 0 {
-                vec![Vec::new(); count]
-            } else {
-                samples
-            },
+            start_frame: reader.start_frame,
+            sample_rate: reader.sample_rate,
+            samples,
         })
     }
 }

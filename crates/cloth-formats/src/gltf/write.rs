@@ -3,6 +3,7 @@
 
 use cloth_core::math::Vec3;
 use gltf_json::accessor::{ComponentType, GenericComponentType, Type};
+use gltf_json::animation::{Channel, Interpolation, Property, Sampler};
 use gltf_json::buffer::Target;
 use gltf_json::material::{PbrBaseColorFactor, PbrMetallicRoughness, StrengthFactor};
 use gltf_json::mesh::{Mode, Primitive, Semantic};
@@ -35,6 +36,9 @@ pub struct GlbMesh<'a> {
     /// Application-specific scalar attributes, one value per vertex: each name must start
     /// with an underscore, as glTF asks of attributes it does not define.
     pub scalars: &'a [(&'a str, &'a [f32])],
+    /// Shapes the mesh can be blended towards, named in the mesh's `extras.targetNames`
+    /// (which Blender reads as its shape keys' names).
+    pub targets: &'a [GlbMorphTarget],
     /// Three per triangle.
     pub indices: &'a [u32],
     pub material: MaterialId,
@@ -42,20 +46,34 @@ pub struct GlbMesh<'a> {
     pub extras: Option<serde_json::Value>,
 }
 
+/// A morph target: every vertex's displacement from the mesh's own position and normal.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GlbMorphTarget {
+    pub name: String,
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Vec<[f32; 3]>,
+}
+
+/// A mesh added to a [`GlbDocument`], as the index of the node that shows it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NodeId(u32);
+
 /// A material added to a [`GlbDocument`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MaterialId(u32);
 
 /// A glTF document being built: the JSON root, the binary buffer, and the names of its
-/// nodes (node `i` shows mesh `i`, both named `names[i]`), their extras, and the materials'
-/// names.
+/// nodes (node `i` shows mesh `i`, both named `names[i]`), their extras and morph target
+/// names, and the materials' and animations' names.
 #[derive(Default)]
 pub struct GlbDocument {
     root: gltf_json::Root,
     bin: Vec<u8>,
     names: Vec<String>,
     extras: Vec<Option<serde_json::Value>>,
+    target_names: Vec<Vec<String>>,
     material_names: Vec<String>,
+    animation_names: Vec<String>,
 }
 
 impl GlbDocument {
@@ -84,13 +102,20 @@ impl GlbDocument {
 
     /// Adds `mesh` as a node of the scene. Attributes whose length is not the vertex count
     /// are an `InvalidInput` error.
-    pub fn add_mesh(&mut self, mesh: GlbMesh<'_>) -> std::io::Result<()> {
+    pub fn add_mesh(&mut self, mesh: GlbMesh<'_>) -> std::io::Result<NodeId> {
         let n = mesh.positions.len();
-        let lengths = [
+        let target_lengths = mesh
+            .targets
+            .iter()
+            .flat_map(|t| [Some(t.positions.len()), Some(t.normals.len())]);
+        let lengths: Vec<Option<usize>> = [
             Some(mesh.normals.len()),
             mesh.texcoords.map(<[_]>::len),
             mesh.colours.map(<[_]>::len),
-        ];
+        ]
+        .into_iter()
+        .chain(target_lengths)
+        .collect();
         let scalar_lengths = mesh.scalars.iter().map(|(_, values)| values.len());
         if lengths
             .iter()
@@ -133,6 +158,16 @@ impl GlbDocument {
         for (name, values) in mesh.scalars {
             attributes.push((Semantic::Extras(name[1..].to_string()), self.scalar(values)));
         }
+        let targets = (!mesh.targets.is_empty()).then(|| {
+            mesh.targets
+                .iter()
+                .map(|t| gltf_json::mesh::MorphTarget {
+                    positions: Some(self.vec3(&t.positions, true)),
+                    normals: Some(self.vec3(&t.normals, false)),
+                    tangents: None,
+                })
+                .collect()
+        });
         let indices = self.indices(mesh.indices);
         let primitive = Primitive {
             attributes: attributes
@@ -144,18 +179,92 @@ impl GlbDocument {
             indices: Some(indices),
             material: Some(Index::new(mesh.material.0)),
             mode: Valid(Mode::Triangles),
-            targets: None,
+            targets,
         };
         let gltf_mesh = self.root.push(gltf_json::Mesh {
             primitives: vec![primitive],
+            weights: (!mesh.targets.is_empty()).then(|| vec![0.0; mesh.targets.len()]),
             ..blank(json!({ "primitives": [] }))
         });
-        self.root.push(gltf_json::Node {
+        let node = self.root.push(gltf_json::Node {
             mesh: Some(gltf_mesh),
             ..Default::default()
         });
         self.names.push(mesh.name.to_owned());
         self.extras.push(mesh.extras);
+        self.target_names
+            .push(mesh.targets.iter().map(|t| t.name.clone()).collect());
+        Ok(NodeId(node.value() as u32))
+    }
+
+    /// An animation of the morph target weights of `node`'s mesh: at `times[k]` (seconds,
+    /// increasing) the weights are `weights[k * targets..(k + 1) * targets]`, blended
+    /// linearly between. Lengths that do not match, or times that do not increase, are an
+    /// `InvalidInput` error.
+    pub fn add_weights_animation(
+        &mut self,
+        name: &str,
+        node: NodeId,
+        times: &[f32],
+        weights: &[f32],
+    ) -> std::io::Result<()> {
+        let targets = self.target_names.get(node.0 as usize).map_or(0, Vec::len);
+        let invalid = |message: String| Err(Error::new(ErrorKind::InvalidInput, message));
+        if targets == 0 {
+            return invalid(format!("animation `{name}`: its mesh has no morph targets"));
+        }
+        if times.is_empty() || weights.len() != times.len() * targets {
+            return invalid(format!(
+                "animation `{name}`: {} weights for {} times of {targets} targets",
+                weights.len(),
+                times.len()
+            ));
+        }
+        if times.iter().any(|t| !t.is_finite()) || times.windows(2).any(|w| w[0] >= w[1]) {
+            return invalid(format!("animation `{name}`: its times do not increase"));
+        }
+        let input = {
+            let words = times.iter().map(|x| x.to_le_bytes());
+            let start = self.bin.len();
+            self.bin.extend(words.flatten());
+            let accessor = self.accessor(start, times.len(), ComponentType::F32, Type::Scalar, None);
+            // An animation's input must state its range.
+            self.root.push(Accessor {
+                min: Some(json!([times[0]])),
+                max: Some(json!([times[times.len() - 1]])),
+                ..accessor
+            })
+        };
+        let output = {
+            let start = self.bin.len();
+            self.bin.extend(weights.iter().flat_map(|x| x.to_le_bytes()));
+            let accessor = self.accessor(start, weights.len(), ComponentType::F32, Type::Scalar, None);
+            self.root.push(accessor)
+        };
+        let sampler = Sampler {
+            extensions: None,
+            extras: Default::default(),
+            input,
+            interpolation: Valid(Interpolation::Linear),
+            output,
+        };
+        let channel = Channel {
+            sampler: Index::new(0),
+            target: gltf_json::animation::Target {
+                extensions: None,
+                extras: Default::default(),
+                node: Index::new(node.0),
+                path: Valid(Property::MorphTargetWeights),
+            },
+            extensions: None,
+            extras: Default::default(),
+        };
+        self.root.push(gltf_json::Animation {
+            channels: vec![channel],
+            samplers: vec![sampler],
+            ..blank(json!({ "channels": [], "samplers": [] }))
+        });
+        self.animation_names.push(name.to_owned());
         Ok(())
     }
 
@@ -175,7 +284,7 @@ impl GlbDocument {
             values.len(),
             ComponentType::F32,
             Type::Vec3,
-            Target::ArrayBuffer,
+            Some(Target::ArrayBuffer),
         );
         let accessor = if bounds {
             Accessor {
@@ -229,25 +338,26 @@ impl GlbDocument {
     ) -> Index<Accessor> {
         let start = self.bin.len();
         self.bin.extend(words.flatten());
-        let accessor = self.accessor(start, count, component, ty, target);
+        let accessor = self.accessor(start, count, component, ty, Some(target));
         self.root.push(accessor)
     }
 
     /// An accessor over a new buffer view of the bytes from `start` to the end of the
-    /// buffer. Every element is 4-byte aligned because all components are 4 bytes.
+    /// buffer. Every element is 4-byte aligned because all components are 4 bytes. Views
+    /// that are not vertex attributes or indices (animation data) have no `target`.
     fn accessor(
         &mut self,
         start: usize,
         count: usize,
         component: ComponentType,
         ty: Type,
-        target: Target,
+        target: Option<Target>,
     ) -> Accessor {
         let view = self.root.push(gltf_json::buffer::View {
             buffer: Index::new(0),
             byte_length: USize64::from(self.bin.len() - start),
             byte_offset: Some(USize64::from(start)),
-            target: Some(Valid(target)),
+            target: target.map(Valid),
             ..blank(json!({ "buffer": 0, "byteLength": 0 }))
         });
         Accessor {
@@ -280,6 +390,14 @@ impl GlbDocument {
         }
         for (i, name) in self.material_names.iter().enumerate() {
             json["materials"][i]["name"] = json!(name);
+        }
+        for (i, name) in self.animation_names.iter().enumerate() {
+            json["animations"][i]["name"] = json!(name);
+        }
+        for (i, names) in self.target_names.iter().enumerate() {
+            if !names.is_empty() {
+                json["meshes"][i]["extras"] = json!({ "targetNames": names });
+            }
         }
         for (i, extras) in self.extras.into_iter().enumerate() {
             if let Some(extras) = extras {
@@ -394,5 +512,6 @@ mod tests {
         let _: Accessor = blank(json!({ "componentType": 5126, "type": "SCALAR", "count": 0 }));
         let _: gltf_json::Buffer = blank(json!({ "byteLength": 0 }));
         let _: gltf_json::Scene = blank(json!({ "nodes": [] }));
+        let _: gltf_json::Animation = blank(json!({ "channels": [], "samplers": [] }));
     }
 }
