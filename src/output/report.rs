@@ -127,6 +127,12 @@ fn write_markdown(out: &mut dyn Write, report: &RunReport) -> std::io::Result<()
             "| particles of attached edges (a waist, a neckline), each held on one side of where it was placed | {n} |"
         )?;
     }
+    if let Some(n) = report.pinned_particles.filter(|&n| n > 0) {
+        writeln!(
+            out,
+            "| vertices of pinned edges and panels, held where the sewing left them for the whole drape | {n} |"
+        )?;
+    }
     if let Some(fit) = &report.fit {
         writeln!(
             out,

@@ -97,7 +97,11 @@ impl SceneFile {
         let bodies = Arc::new(Bodies::new(bodies));
 
         let cloth = match &self.cloth {
-            ClothSpec::Garment { pattern, edge_length } => {
+            ClothSpec::Garment {
+                pattern,
+                edge_length,
+                pins,
+            } => {
                 let path = dir.join(pattern);
                 let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
                 let pattern = if is_json {
@@ -109,6 +113,24 @@ impl SceneFile {
                     SceneFileError::new(file, Some("cloth.garment.pattern"), SceneErrorKind::Pattern(e))
                 })?;
                 warnings.extend(pattern.gathers().into_iter().map(SceneWarning::Gather));
+                let pinned = pins
+                    .iter()
+                    .enumerate()
+                    .map(|(k, pin)| {
+                        let found = match &pin.edge {
+                            Some(edge) => pattern
+                                .find_edge(&pin.panel, edge)
+                                .map(|s| (s.panel, Some(s.edge))),
+                            None => pattern.find_panel(&pin.panel).map(|p| (p, None)),
+                        };
+                        found.map_err(|reason| {
+                            invalid(
+                                &format!("cloth.garment.pins[{k}]"),
+                                format!("in '{}': {reason}", path.display()),
+                            )
+                        })
+                    })
+                    .collect::<Result<Vec<_>, _>>()?;
                 let mut garment = GarmentBuilder::new(pattern)
                     .edge_length(*edge_length)
                     .max_triangles(self.max_triangles)
@@ -117,6 +139,9 @@ impl SceneFile {
                     .map_err(|e| {
                         SceneFileError::new(file, Some("cloth.garment"), SceneErrorKind::Garment(e))
                     })?;
+                for (panel, edge) in pinned {
+                    garment.pin(panel, edge);
+                }
                 let fabrics = library.panel_fabrics(&garment, &fabric).map_err(|source| {
                     SceneFileError::new(
                         &path.display().to_string(),

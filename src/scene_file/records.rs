@@ -3,6 +3,7 @@
 use super::frame::UpAxis;
 use cloth_core::{Fabric, KesMeasurement, RestCriteria, SelfCollision, SolverSettings};
 use cloth_garment::mannequin::Measurements;
+use cloth_garment::pattern::EdgeRef;
 use cloth_garment::sewing::{DrapeSettings, SewingSettings};
 use serde::Deserialize;
 use std::path::PathBuf;
@@ -71,10 +72,14 @@ impl SceneFile {
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum ClothSpec {
     /// A garment from a pattern: our TOML (`.toml`) or GarmentCode's JSON (`.json`).
+    /// `pins` hold outline edges or whole panels, by name, where the sewing leaves them,
+    /// for the whole drape (a garment on a hanger, a waistband held up).
     Garment {
         pattern: PathBuf,
         #[serde(default = "default_edge_length")]
         edge_length: f64,
+        #[serde(default)]
+        pins: Vec<GarmentPin>,
     },
     /// A rectangular sheet of `nx` by `ny` particles, `size` m, its corner at `origin`,
     /// its warp along `u_axis` and weft along `v_axis`, the particles `pins` (as [i, j])
@@ -125,6 +130,16 @@ pub enum ClothSpec {
     /// m of it beyond the platform's edge in `cells` cells, bends under its own weight; the
     /// report compares its tip with the inextensible elastica's.
     Cantilever { overhang: f64, cells: usize },
+}
+
+/// A garment's pin: an outline edge of a panel (by its name, or its index from 0 as
+/// GarmentCode's unnamed edges are), or the whole panel when no edge is given.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GarmentPin {
+    pub panel: String,
+    #[serde(default)]
+    pub edge: Option<EdgeRef>,
 }
 
 fn one() -> f64 {

@@ -116,6 +116,9 @@ pub struct RunReport {
     /// Particles of the pattern's attached edges (a waist, a neckline), each held on one
     /// side of where it was placed (garments only).
     pub attached_particles: Option<usize>,
+    /// Vertices of the garment's pinned edges and panels, before welding: held where the
+    /// sewing left them, for the whole drape (garments only).
+    pub pinned_particles: Option<usize>,
     /// Pieces of the cloth (panels) found through each other at the start of a stage,
     /// exempt from each other until they came apart.
     pub tangles: Vec<TangleRecord>,

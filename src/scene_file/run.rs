@@ -60,6 +60,7 @@ impl Prepared {
         let mut weld_crossings = None;
         let mut untangling_at_rest = None;
         let mut attached_particles = None;
+        let mut pinned_particles = None;
         let mut sheet_test = None;
         // A garment's panel of each triangle, and the panels' names (its panels keep their
         // triangles' order through welding).
@@ -68,6 +69,7 @@ impl Prepared {
             PreparedCloth::Garment { garment, fabrics } => {
                 labels = PanelLabels::new(garment.panel_names.clone(), garment.triangle_panel.clone()).ok();
                 attached_particles = Some(garment.attached.iter().map(|(p, _)| p.len()).sum());
+                pinned_particles = Some(garment.pinned.len());
                 let mut rec = Recorder::new(
                     observer,
                     &scene.output,
@@ -253,6 +255,7 @@ impl Prepared {
             weld_crossings,
             untangling_at_rest,
             attached_particles,
+            pinned_particles,
             tangles,
             panels,
             fit,

@@ -114,7 +114,13 @@ impl Collider for Bodies {
             .fold(0.0, f64::max)
     }
 
+    /// With no body, the default thickness: the contact margins stay positive, as the
+    /// simulation asks, though there is nothing to meet (a garment sewn and hung in the
+    /// air by its pins).
     fn max_thickness(&self) -> f64 {
+        if self.bodies.is_empty() {
+            return crate::body::DEFAULT_THICKNESS;
+        }
         self.bodies.iter().map(|b| b.thickness()).fold(0.0, f64::max)
     }
 

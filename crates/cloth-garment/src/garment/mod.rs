@@ -70,6 +70,11 @@ pub struct Garment {
     /// The particles of each of the pattern's attached edges, with the way the edge is free
     /// to move (see [`crate::pattern::AttachedEdge`]).
     pub attached: Vec<(Vec<usize>, Vec3)>,
+    /// The mesh vertices along each panel's outline edges, start to end.
+    pub edge_vertices: Vec<Vec<Vec<usize>>>,
+    /// Vertices pinned where the sewing leaves them, for the whole drape (see
+    /// [`Garment::pin`]), ascending.
+    pub pinned: Vec<usize>,
 }
 
 impl GarmentBuilder {
@@ -239,6 +244,8 @@ impl GarmentBuilder {
             passing: Vec::new(),
             touching: Vec::new(),
             attached,
+            edge_vertices,
+            pinned: Vec::new(),
         })
     }
 }
@@ -287,6 +294,27 @@ impl Garment {
     }
 
     /// The particles of each panel (before sewing, each is of one panel).
+    /// Pins an outline edge of a panel (`Some(side)`) or a whole panel (`None` edge of
+    /// `side.panel`): held where the sewing leaves them, for the whole drape. They are
+    /// not held while sewn, which moves them with their seams. Returns how many vertices
+    /// were pinned; a side the garment does not have pins none.
+    pub fn pin(&mut self, panel: usize, edge: Option<usize>) -> usize {
+        let vertices: Vec<usize> = match edge {
+            Some(e) => self
+                .edge_vertices
+                .get(panel)
+                .and_then(|edges| edges.get(e))
+                .cloned()
+                .unwrap_or_default(),
+            None => self.panel_members().into_iter().nth(panel).unwrap_or_default(),
+        };
+        let count = vertices.len();
+        self.pinned.extend(vertices);
+        self.pinned.sort_unstable();
+        self.pinned.dedup();
+        count
+    }
+
     pub(crate) fn panel_members(&self) -> Vec<Vec<usize>> {
         let mut members = vec![Vec::new(); self.panel_names.len()];
         let mut seen = vec![false; self.mesh.vertex_count()];

@@ -79,6 +79,15 @@ pub struct SeamSide {
     pub edge: usize,
 }
 
+/// An outline edge as a file names it: by its name, or by its index from 0 (GarmentCode's
+/// edges have no names).
+#[derive(Debug, Clone, PartialEq, Eq, serde::Deserialize)]
+#[serde(untagged)]
+pub enum EdgeRef {
+    Index(usize),
+    Name(String),
+}
+
 /// How the two sides of a seam run against each other.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SeamOrientation {
@@ -125,6 +134,42 @@ impl Pattern {
             Some(name) => format!("panel '{}', edge '{}' ({})", panel.name, name, side.edge),
             None => format!("panel '{}', edge {}", panel.name, side.edge),
         }
+    }
+
+    /// The outline edge `edge_ref` of the panel named `panel_name`, or why there is none
+    /// (listing what there is).
+    pub fn find_edge(&self, panel_name: &str, edge_ref: &EdgeRef) -> Result<SeamSide, String> {
+        let panel = self.find_panel(panel_name)?;
+        let outline = &self.panels[panel].outline;
+        let edge = match edge_ref {
+            EdgeRef::Index(i) if *i < outline.len() => Some(*i),
+            EdgeRef::Index(_) => None,
+            EdgeRef::Name(name) => self.panels[panel].edge_index(name),
+        };
+        let Some(edge) = edge else {
+            let known: Vec<String> = outline
+                .iter()
+                .enumerate()
+                .map(|(k, e)| e.name.clone().unwrap_or_else(|| k.to_string()))
+                .collect();
+            let wanted = match edge_ref {
+                EdgeRef::Index(i) => i.to_string(),
+                EdgeRef::Name(n) => format!("'{n}'"),
+            };
+            return Err(format!(
+                "panel '{panel_name}' has no edge {wanted} (edges: {})",
+                known.join(", ")
+            ));
+        };
+        Ok(SeamSide { panel, edge })
+    }
+
+    /// The panel named `panel_name`, or why there is none (listing the panels).
+    pub fn find_panel(&self, panel_name: &str) -> Result<usize, String> {
+        self.panel_index(panel_name).ok_or_else(|| {
+            let known: Vec<&str> = self.panels.iter().map(|p| p.name.as_str()).collect();
+            format!("no panel named '{panel_name}' (panels: {})", known.join(", "))
+        })
     }
 }
 

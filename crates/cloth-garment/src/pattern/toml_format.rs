@@ -30,8 +30,8 @@
 //! ```
 
 use super::{
-    AttachedEdge, BodyPart, Curve, Edge, Panel, Pattern, PatternError, Placement, Point2, Seam,
-    SeamOrientation, SeamSide, Wrap,
+    AttachedEdge, BodyPart, Curve, Edge, EdgeRef, Panel, Pattern, PatternError, Placement, Point2, Seam,
+    SeamOrientation, Wrap,
 };
 use cloth_core::math::Vec3;
 use serde::Deserialize;
@@ -157,13 +157,6 @@ struct AttachmentRecord {
     direction: [f64; 3],
 }
 
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum EdgeRef {
-    Index(usize),
-    Name(String),
-}
-
 #[derive(Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 enum OrientationRecord {
@@ -257,7 +250,9 @@ impl Pattern {
         };
         for (s, seam) in record.seams.iter().enumerate() {
             let side = |r: &SideRecord| {
-                find_edge(&pattern, &r.panel, &r.edge).map_err(|reason| PatternError::seam(file, s, reason))
+                pattern
+                    .find_edge(&r.panel, &r.edge)
+                    .map_err(|reason| PatternError::seam(file, s, reason))
             };
             let (a, b) = (side(&seam.a)?, side(&seam.b)?);
             let orientation = match seam.orientation {
@@ -268,12 +263,12 @@ impl Pattern {
             pattern.seams.push(Seam { a, b, orientation });
         }
         for (k, attached) in record.attachments.iter().enumerate() {
-            let edge = find_edge(&pattern, &attached.panel, &attached.edge).map_err(|reason| {
-                PatternError::Pattern {
+            let edge = pattern
+                .find_edge(&attached.panel, &attached.edge)
+                .map_err(|reason| PatternError::Pattern {
                     file: file.into(),
                     reason: format!("attachment {k}: {reason}"),
-                }
-            })?;
+                })?;
             let direction = Vec3::from(attached.direction)
                 .try_normalize(1e-12)
                 .filter(|d| d.iter().all(|c| c.is_finite()))
@@ -286,37 +281,4 @@ impl Pattern {
         pattern.validate(file)?;
         Ok(pattern)
     }
-}
-
-/// The outline edge a record names, or why there is none (listing what there is).
-fn find_edge(pattern: &Pattern, panel_name: &str, edge_ref: &EdgeRef) -> Result<SeamSide, String> {
-    let Some(panel) = pattern.panel_index(panel_name) else {
-        let known: Vec<&str> = pattern.panels.iter().map(|p| p.name.as_str()).collect();
-        return Err(format!(
-            "no panel named '{panel_name}' (panels: {})",
-            known.join(", ")
-        ));
-    };
-    let outline = &pattern.panels[panel].outline;
-    let edge = match edge_ref {
-        EdgeRef::Index(i) if *i < outline.len() => Some(*i),
-        EdgeRef::Index(_) => None,
-        EdgeRef::Name(name) => pattern.panels[panel].edge_index(name),
-    };
-    let Some(edge) = edge else {
-        let known: Vec<String> = outline
-            .iter()
-            .enumerate()
-            .map(|(k, e)| e.name.clone().unwrap_or_else(|| k.to_string()))
-            .collect();
-        let wanted = match edge_ref {
-            EdgeRef::Index(i) => i.to_string(),
-            EdgeRef::Name(n) => format!("'{n}'"),
-        };
-        return Err(format!(
-            "panel '{panel_name}' has no edge {wanted} (edges: {})",
-            known.join(", ")
-        ));
-    };
-    Ok(SeamSide { panel, edge })
 }

@@ -21,7 +21,7 @@ use crate::pattern::BodyPart;
 use caught::Catcher;
 use cloth_core::{math::Vec3, RestCriteria, SelfCollision, SimulationBuilder, SolverSettings, StepStats};
 use cloth_core::{
-    Attachment, Collider, Fabric, Integrator, Interrupt, PassThrough, RestOutcome, SeamPull, SimError,
+    Attachment, Collider, Fabric, Integrator, Interrupt, PassThrough, Pin, RestOutcome, SeamPull, SimError,
     Simulation,
 };
 use from_clear_end::FromClearEnds;
@@ -128,6 +128,8 @@ pub struct Sewn {
     /// The attached edges' particles, welded, each held on the side of its edge's plane
     /// (see `attachments_as_placed`).
     pub attachments: Vec<Attachment>,
+    /// The pinned vertices' particles (see [`Garment::pin`]), held where sewn.
+    pub pins: Vec<usize>,
 }
 
 /// Sews `garment`, each panel of its fabric in `panel_fabrics`, around the bodies of
@@ -632,10 +634,12 @@ where
             until_out: p.until_out,
         })
         .collect();
+    let pins = map(&garment.pinned);
     Ok(Some(Sewn {
         welded,
         passing,
         attachments,
+        pins,
         fabrics,
         triangle_fabric,
         report: SewingReport {
@@ -771,6 +775,7 @@ pub fn drape_simulation(
             .bending_calibration(sewn.bending_calibration.clone())
             .pass_through(sewn.passing.clone())
             .attachments(sewn.attachments.clone())
+            .pins(sewn.pins.iter().map(|&i| Pin::fixed(i)))
             .collider(collider)
             .build()?,
     )
