@@ -1,14 +1,19 @@
 //! What a scene run writes into its output folder: the cloth as OBJ (with material
 //! coordinates) and PLY (with strain colours), the bodies as OBJ, both in one glTF binary,
-//! a picture, a garment's segmentation, and the report as JSON and markdown. OBJ and PLY
+//! a picture, a garment's segmentation, the steps as CSV, the report's plots, and the
+//! report as JSON and markdown. OBJ and PLY
 //! are in the frame the scene asks (`[output] up_axis`) and say so in their headers; a
 //! garment's panels are OBJ groups and a PLY property. Every file is written atomically.
 
 mod glb;
 mod ply;
+mod history;
+mod plots;
 mod report;
 
 pub use glb::{write_glb, GlbCloth};
+pub use history::write_history_csv;
+pub use plots::{convergence, strain_histogram};
 pub use ply::write_strain_ply;
 pub use report::write_report;
 
@@ -89,6 +94,28 @@ pub fn write_outputs(
             .write_png(&path)?;
         written.push(path);
     }
-    written.extend(write_report(dir, &result.report)?);
+    if spec.history {
+        let path = dir.join("history.csv");
+        write_history_csv(&path, &result.history)?;
+        written.push(path);
+    }
+    let mut plots = Vec::new();
+    if spec.plots {
+        let path = dir.join("strain.png");
+        strain_histogram(&result.mesh, &result.positions, 1200, 700).write_png(&path)?;
+        written.push(path);
+        plots.push((
+            "strain.png",
+            "The final warp and weft strain: the share of the cloth's area at each strain.",
+        ));
+        let path = dir.join("convergence.png");
+        convergence(&result.history, 1200, 900).write_png(&path)?;
+        written.push(path);
+        plots.push((
+            "convergence.png",
+            "Step by step through the stages: the kinetic energy, and the linear solve's relative residual.",
+        ));
+    }
+    written.extend(write_report(dir, &result.report, &plots)?);
     Ok(written)
 }

@@ -8,14 +8,25 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Writes `report.json` and `report.md` into `dir`.
-pub fn write_report(dir: &Path, report: &RunReport) -> std::io::Result<Vec<PathBuf>> {
+/// `plots` are pictures already in `dir`, each a file name and what it shows, which
+/// `report.md` shows in a section of their own.
+pub fn write_report(dir: &Path, report: &RunReport, plots: &[(&str, &str)]) -> std::io::Result<Vec<PathBuf>> {
     let json = dir.join("report.json");
     write_atomically(&json, |out| {
         serde_json::to_writer_pretty(&mut *out, report).map_err(std::io::Error::other)?;
         writeln!(out)
     })?;
     let md = dir.join("report.md");
-    write_atomically(&md, |out| write_markdown(out, report))?;
+    write_atomically(&md, |out| {
+        write_markdown(out, report)?;
+        if !plots.is_empty() {
+            writeln!(out, "\n## Plots")?;
+        }
+        for (file, caption) in plots {
+            writeln!(out, "\n{caption}\n\n![{caption}]({file})")?;
+        }
+        Ok(())
+    })?;
     Ok(vec![json, md])
 }
 

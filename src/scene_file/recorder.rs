@@ -3,6 +3,7 @@
 //! frames and takes the checkpoints the scene asks for.
 
 use super::frame::UpAxis;
+use super::history::HistoryRow;
 use super::observer::RunObserver;
 use super::records::{AnimationFormat, OutputSpec};
 use super::report::{Checkpoint, FrameRecord, RunOutcome, StageReport};
@@ -47,6 +48,8 @@ pub(super) struct Recorder<'a> {
     cut: u64,
     retries: u64,
     step_ms: Vec<f64>,
+    /// Every step of the run.
+    history: Vec<HistoryRow>,
     checkpoint_rows: Vec<Checkpoint>,
     frames: Vec<FrameRecord>,
     /// Why the recorder itself stopped the run (a frame it could not write).
@@ -86,6 +89,8 @@ pub(super) struct Recorded {
     pub passes_thin_parts: Vec<bool>,
     /// Animation files that could not be completed, and why.
     pub animation_errors: Vec<String>,
+    /// Every step of the run.
+    pub history: Vec<HistoryRow>,
 }
 
 impl<'a> Recorder<'a> {
@@ -121,6 +126,7 @@ impl<'a> Recorder<'a> {
             cut: 0,
             retries: 0,
             step_ms: Vec::new(),
+            history: Vec::new(),
             checkpoint_rows: Vec::new(),
             frames: Vec::new(),
             failure: None,
@@ -218,6 +224,7 @@ impl<'a> Recorder<'a> {
             tangles: self.tangles,
             passes_thin_parts: self.passes_thin_parts,
             animation_errors: self.animation_errors,
+            history: self.history,
         }
     }
 
@@ -248,12 +255,9 @@ impl<'a> Recorder<'a> {
         self.cg += stats.cg_iterations;
         self.cut += u64::from(stats.substeps > 1);
         self.retries += u64::from(stats.retries);
-        self.step_ms.push(
-            1e3 * (stats.assembly_seconds
-                + stats.solve_seconds
-                + stats.contact_seconds
-                + stats.self_collision_seconds),
-        );
+        let row = HistoryRow::of(self.stage, self.steps, stats);
+        self.step_ms.push(row.step_ms);
+        self.history.push(row);
         if self.checkpoints.contains(&self.steps) {
             let strain = StrainSummary::of(sim.mesh(), sim.positions());
             self.checkpoint_rows.push(Checkpoint {

@@ -406,6 +406,12 @@ pub struct OutputSpec {
     /// A garment's segmentation file (`segmentation.txt`): a line per vertex of the OBJ
     /// and PLY naming its panel, or the panels a seam vertex joins.
     pub segmentation: bool,
+    /// Every step of every stage as a row of `history.csv`: the solver's iterations and
+    /// residual, the energies, the fastest particle, the contacts, the step's time.
+    pub history: bool,
+    /// Plots for the report: the final strain's histogram (`strain.png`) and the residual
+    /// and kinetic energy over the steps (`convergence.png`).
+    pub plots: bool,
 }
 
 impl Default for OutputSpec {
@@ -422,6 +428,8 @@ impl Default for OutputSpec {
             checkpoints: Vec::new(),
             up_axis: UpAxis::Z,
             segmentation: true,
+            history: true,
+            plots: true,
         }
     }
 }

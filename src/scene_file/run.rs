@@ -5,6 +5,7 @@
 use super::build::{Prepared, PreparedCloth, SheetTest};
 use super::error::{SceneErrorKind, SceneFileError};
 use super::fit::fit_where_stretched;
+use super::history::HistoryRow;
 use super::observer::RunObserver;
 use super::panel_report::panel_reports;
 use super::recorder::{Recorded, Recorder};
@@ -29,6 +30,8 @@ pub struct RunResult {
     pub report: RunReport,
     /// A garment's panels on `mesh` (`None` for a sheet).
     pub panels: Option<PanelLabels>,
+    /// Every step of every stage.
+    pub history: Vec<HistoryRow>,
 }
 
 impl RunResult {
@@ -171,6 +174,7 @@ impl Prepared {
             tangles,
             passes_thin_parts,
             animation_errors,
+            history,
         } = rec.finish();
         // Names the piece of the cloth a triangle is of.
         let piece_of = |t: usize| match &labels {
@@ -275,6 +279,7 @@ impl Prepared {
             positions,
             report,
             panels: labels,
+            history,
         })
     }
 }

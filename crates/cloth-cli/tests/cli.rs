@@ -275,6 +275,38 @@ fn a_run_writes_outputs_that_read_back() {
     assert_eq!(heights.len(), 144);
     // Resting on the sphere of radius 0.3 at the origin: nothing far below its top.
     assert!(heights.iter().all(|&y| y > -0.35 && y < 0.36), "{heights:?}");
+    // A row per step in history.csv, the last at the run's end, its energy falling as the
+    // sheet settles.
+    let csv = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 60);
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let value = |row: &[&str], name: &str| row[column(name)].parse::<f64>().unwrap();
+    assert_eq!(rows[59][column("stage")], "running");
+    assert_eq!(value(&rows[59], "step"), 60.0);
+    let simulated = report["simulated_time"].as_f64().unwrap();
+    assert!((value(&rows[59], "time") - simulated).abs() < 1e-12);
+    let cg: f64 = rows.iter().map(|r| value(r, "cg_iterations")).sum();
+    assert_eq!(cg, report["stages"][0]["cg_iterations"].as_f64().unwrap());
+    let peak = rows
+        .iter()
+        .map(|r| value(r, "kinetic_energy"))
+        .fold(0.0, f64::max);
+    assert!(
+        value(&rows[59], "kinetic_energy") < 0.1 * peak,
+        "the sheet settles"
+    );
+    // The report shows its plots, pictures that decode.
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for plot in ["strain.png", "convergence.png"] {
+        assert!(md.contains(&format!("]({plot})")), "{md}");
+        let decoder = png::Decoder::new(std::io::BufReader::new(
+            std::fs::File::open(out.join(plot)).unwrap(),
+        ));
+        assert!(decoder.read_info().unwrap().info().width > 0);
+    }
     // The folder is not overwritten without --force.
     let o = run_quietly(&scene, &out);
     assert_eq!(o.status.code(), Some(2));
@@ -378,7 +410,9 @@ fn signal_stops_the_run_and_writes_the_state_reached(signal: &str) {
 fn sheet_frames(name: &str, output: &str) -> (Scratch, serde_json::Value) {
     let dir = scratch(name);
     let scene = dir.join("sheet.toml");
-    let text = format!("{SHEET}\n[output]\nframes_every = 20\nglb = false\npng = false\n{output}");
+    let text = format!(
+        "{SHEET}\n[output]\nframes_every = 20\nglb = false\npng = false\nhistory = false\nplots = false\n{output}"
+    );
     std::fs::write(&scene, text).unwrap();
     let out = dir.join("out");
     let o = run_quietly(&scene, &out);
@@ -415,6 +449,10 @@ fn frames_and_checkpoints_are_written_when_asked() {
         "{md}"
     );
     assert!(!out.join("scene.glb").exists() && !out.join("render.png").exists());
+    for unasked in ["history.csv", "strain.png", "convergence.png"] {
+        assert!(!out.join(unasked).exists(), "{unasked}");
+    }
+    assert!(!md.contains("## Plots"));
 }
 
 /// Asked for an animation, the frames go into one point cache per stage, beside the mesh

@@ -1,6 +1,7 @@
 //! Pictures of meshes without a GPU: a z-buffered, supersampled triangle rasteriser with
 //! smooth two-sided shading, a perspective camera that frames whatever it is given, bitmap
-//! text, and figures of titled panels side by side with a strain colour legend.
+//! text, figures of titled panels side by side with a strain colour legend, and charts for
+//! reports.
 //!
 //! [`render_run`] is the picture of a finished run; [`figure`] draws anything else, and
 //! [`read_render_mesh`] reads OBJ and PLY files to feed it.
@@ -15,11 +16,13 @@ mod shading;
 mod raster;
 mod text;
 mod legend;
+mod chart;
 mod figure;
 mod mesh_read;
 mod run;
 
 pub use camera::View;
+pub use chart::{charts, Chart, Series, Style};
 pub use error::RenderError;
 pub use figure::{figure, Panel};
 pub use image::{check_image_size, Image, IMAGE_SIDES};
