@@ -6,38 +6,16 @@ use cloth::scene_file::{PreparedCloth, SceneFile};
 use cloth::{math::Vec3, Interrupt};
 use std::ops::ControlFlow;
 
-/// Two 10 x 20 cm panels facing each other 3 cm apart, sewn at both sides into a tube.
-const TUBE: &str = r#"
-name = "tube"
-units = "cm"
-[[panels]]
-name = "front"
-outline = [{ start = [-5, 0], name = "hem" }, { start = [5, 0], name = "right" }, { start = [5, 20], name = "top" }, { start = [-5, 20], name = "left" }]
-placement = { rotation = [90, 0, 0], translation = [0, -1.5, 50] }
-[[panels]]
-name = "back"
-outline = [{ start = [-5, 0], name = "hem" }, { start = [5, 0], name = "right" }, { start = [5, 20], name = "top" }, { start = [-5, 20], name = "left" }]
-placement = { rotation = [90, 0, 180], translation = [0, 1.5, 50] }
-[[seams]]
-a = { panel = "front", edge = "right" }
-b = { panel = "back", edge = "left" }
-[[seams]]
-a = { panel = "front", edge = "left" }
-b = { panel = "back", edge = "right" }
-"#;
-
-/// The tube's scene with `pins` (TOML array items), prepared in a temporary folder.
+/// The tube's scene (`assets/patterns/tube.toml`: two 10 x 20 cm panels 3 cm apart, sewn
+/// at both sides) with `pins` (TOML array items), prepared.
 fn tube(pins: &str) -> Result<(SceneFile, cloth::scene_file::Prepared), String> {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("tube.toml"), TUBE).unwrap();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/patterns");
     let text = format!(
         "[cloth.garment]\npattern = \"tube.toml\"\nedge_length = 0.02\npins = [{pins}]\n\
          [fabric]\npreset = \"cotton_poplin\"\n"
     );
     let scene = SceneFile::from_toml_str(&text, "scene.toml").map_err(|e| e.to_string())?;
-    let prepared = scene
-        .prepare("scene.toml", dir.path())
-        .map_err(|e| e.to_string())?;
+    let prepared = scene.prepare("scene.toml", &dir).map_err(|e| e.to_string())?;
     Ok((scene, prepared))
 }
 

@@ -123,6 +123,10 @@ class ClothMesh:
     def uv(self) -> npt.NDArray[np.float64]:
         """``(N, 2)`` material coordinates (for a seam vertex, those of its first triangle)."""
     @property
+    def corner_uv(self) -> npt.NDArray[np.float64]:
+        """``(M, 3, 2)`` material coordinates of every triangle's corners, m (u along the
+        warp, v along the weft): a seam vertex has each panel's own at its corners there."""
+    @property
     def triangles(self) -> npt.NDArray[np.int64]:
         """``(M, 3)`` vertex indices."""
     @property
@@ -167,6 +171,30 @@ class Body:
         to ``position``. A mesh with holes, stray edges or overlapping parts loads with a
         warning for each kind of defect (see :attr:`defects`); one that encloses nothing
         raises ``ValueError`` naming the file."""
+    @staticmethod
+    def from_arrays(
+        vertices: _Points,
+        triangles: npt.ArrayLike,
+        *,
+        scale: float = 1.0,
+        up_axis: Literal["y", "z"] | None = None,
+        rotation: _Vec3 = (0.0, 0.0, 0.0),
+        position: _Vec3 = (0.0, 0.0, 0.0),
+        thickness: float | None = None,
+        friction: float | None = None,
+        name: str | None = None,
+    ) -> Body:
+        """A body from a triangle mesh in memory: ``vertices`` ``(V, 3)`` and
+        ``triangles`` ``(T, 3)`` indices into them, scaled, turned and placed as
+        :meth:`load`'s file is (``up_axis`` ``"z"`` by default) and checked as a file is: a
+        mesh with defects loads with a warning for each kind, one that encloses nothing
+        raises ``ValueError``."""
+    @staticmethod
+    def from_trimesh(mesh: Any, **options: Any) -> Body:
+        """A body from a ``trimesh.Trimesh`` (or anything with ``vertices`` and
+        ``faces``), with :meth:`from_arrays`'s keyword ``options``; ``TypeError`` for
+        anything else. Trimesh meshes are y-up as often as not: say ``up_axis="y"`` for
+        those."""
     @staticmethod
     def sphere(
         radius: float,
@@ -447,6 +475,7 @@ class Simulation:
         callback: _Callback | None = None,
         every: int = 1,
         max_time_step: float | None = None,
+        progress: bool = False,
     ) -> RestOutcome:
         """Steps until every particle (all but ``moving_fraction`` of them) has moved
         less than ``tolerance`` m per step over a window of ``consecutive_steps`` steps
@@ -457,7 +486,9 @@ class Simulation:
         Ctrl-C stops it too (``KeyboardInterrupt``, the state kept). With
         ``max_time_step`` (s), each step taken whole lets the next grow by a quarter up
         to it (one that had to be cut starts again from the solver's), ``tolerance``
-        growing with the step; the solver's own step is given back at the end."""
+        growing with the step; the solver's own step is given back at the end.
+        ``progress=True`` shows a tqdm bar of the steps towards ``max_steps``
+        (``ImportError`` without tqdm)."""
     @property
     def positions(self) -> npt.NDArray[np.float64]:
         """``(N, 3)`` positions. Setting them moves the particles (pinned ones go back to
@@ -488,6 +519,14 @@ class Simulation:
     def step_count(self) -> int: ...
     @property
     def kinetic_energy(self) -> float: ...
+    @property
+    def history(self) -> dict[str, Any]:
+        """Every step taken through this object, as columns: ``stage`` (a list of names)
+        and numpy arrays ``step``, ``time`` (s), ``cg_iterations``, ``cg_residual``,
+        ``kinetic_energy``, ``potential_energy`` (J), ``max_speed`` (m/s), ``substeps``,
+        ``retries``, ``contacts``, ``self_contacts``, ``step_ms`` (wall time), one entry per
+        step: the columns of a run's ``history.csv``. ``pandas.DataFrame(sim.history)``
+        makes a table."""
     def strain(self) -> Strain:
         """The warp and weft strain now."""
     def grid_stretch(self) -> tuple[float, float] | None:
@@ -529,6 +568,22 @@ class RunResult:
     @property
     def outputs(self) -> list[str]:
         """The files written."""
+    @property
+    def history(self) -> dict[str, Any]:
+        """Every step of every stage, as columns (see :attr:`Simulation.history`): what
+        ``history.csv`` holds."""
+    @property
+    def panel_names(self) -> list[str] | None:
+        """A garment's panel names (``None`` for a sheet)."""
+    @property
+    def triangle_panel(self) -> npt.NDArray[np.int64] | None:
+        """``(M,)`` each triangle's panel, an index into :attr:`panel_names` (``None`` for a
+        sheet)."""
+    def to_trimesh(self) -> Any:
+        """The cloth where the run ended as a ``trimesh.Trimesh`` (z up, m; not merged or
+        repaired), a garment's panel per face in ``face_attributes["panel"]`` with the names
+        in ``metadata["panels"]``. Needs trimesh (``pip install cloth-drape[trimesh]``;
+        ``ImportError`` without it)."""
 
 @final
 class Scene:
@@ -561,10 +616,12 @@ class Scene:
         force: bool = False,
         callback: _Callback | None = None,
         every: int = 1,
+        progress: bool = False,
     ) -> RunResult:
         """Runs as ``cloth run SCENE --out OUT_DIR`` and writes the same outputs. Bad input
         raises ``ValueError`` before anything runs; a divergence writes the last good state
         and the report, then raises :class:`SimulationError`; ``callback`` returning
         ``False`` stops the run, which is then reported and returned as interrupted; Ctrl-C
-        writes the state reached and raises ``KeyboardInterrupt``."""
+        writes the state reached and raises ``KeyboardInterrupt``. ``progress=True`` shows
+        a tqdm bar of each stage's steps towards its limit (``ImportError`` without tqdm)."""
 

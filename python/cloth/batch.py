@@ -261,6 +261,24 @@ class BatchResult:
         """:meth:`to_dict` as JSON text."""
         return json.dumps(self.to_dict(), indent=2)
 
+    def to_pandas(self) -> Any:
+        """The records as a ``pandas.DataFrame``, a row per run: ``name``, ``status``,
+        ``folder``, ``seconds``, ``error``, ``error_type``, ``key``, and the summary's
+        entries as columns of their own (``particles``, ``max_warp``, ``max_weft``,
+        ``deepest_penetration``, ``largest_seam_gap``; missing ones NaN). Needs pandas
+        (``pip install cloth-drape[pandas]``)."""
+        try:
+            import pandas
+        except ImportError as e:
+            raise ImportError("to_pandas needs pandas: pip install pandas (or cloth-drape[pandas])") from e
+        rows = []
+        for r in self.records:
+            row = {k: v for k, v in r.to_dict().items() if k != "summary"}
+            row.update(r.summary)
+            rows.append(row)
+        columns = ["name", "status", "folder", "seconds", "error", "error_type", "key"]
+        return pandas.DataFrame(rows, columns=columns + sorted({k for r in rows for k in r} - set(columns)))
+
     def summary(self) -> str:
         """A few lines for people: the counts, then each failure and its error."""
         lines = [
@@ -616,6 +634,7 @@ def run_batch(
     executor: concurrent.futures.Executor | None = None,
     rerun_failed: bool = True,
     on_result: Callable[[RunRecord], None] | None = None,
+    progress: bool = False,
 ) -> BatchResult:
     """Runs every job not done yet, each into ``out_dir/<job name>``.
 
@@ -633,11 +652,15 @@ def run_batch(
     ``out_dir/batch.json`` lists every job (``"pending"`` until it ends) and is rewritten
     as each run finishes.
 
+    ``progress=True`` shows a tqdm bar of the runs ended (those skipped counted from the
+    start; ``ImportError`` before anything runs without tqdm).
+
     Returns the records in the order of ``jobs``. ``ValueError`` before anything runs
     when two jobs share a name.
     """
     jobs = list(jobs)
     _check_jobs(jobs)
+    bar = _progress_bar(progress, len(jobs))
     # Absolute: workers in other processes, or on other machines, have other working folders.
     out = Path(out_dir).absolute()
     out.mkdir(parents=True, exist_ok=True)
@@ -652,10 +675,31 @@ def run_batch(
     def finish(i: int, record: RunRecord) -> None:
         records[i] = record
         save()
+        if bar is not None:
+            bar.update(1)
         if on_result is not None:
             on_result(record)
 
+    if bar is not None:
+        bar.update(len(jobs) - len(todo))
     save()
+    try:
+        _run_all(jobs, folders, todo, executor, finish)
+    finally:
+        if bar is not None:
+            bar.close()
+    return BatchResult(records=[r for r in records if r is not None], out_dir=str(out))
+
+
+def _run_all(
+    jobs: list[Job],
+    folders: list[Path],
+    todo: list[int],
+    executor: concurrent.futures.Executor | None,
+    finish: Callable[[int, RunRecord], None],
+) -> None:
+    """Runs the jobs numbered in ``todo`` here or on ``executor``, handing each record to
+    ``finish`` as it ends."""
     if executor is None:
         for i in todo:
             try:
@@ -677,7 +721,17 @@ def run_batch(
             # Stopped early (Ctrl-C, on_result raised): runs not started are not wanted.
             for future in futures:
                 future.cancel()
-    return BatchResult(records=[r for r in records if r is not None], out_dir=str(out))
+
+
+def _progress_bar(on: bool, total: int) -> Any:
+    """A tqdm bar of ``total`` runs when ``on``, else ``None``."""
+    if not on:
+        return None
+    try:
+        from tqdm import tqdm
+    except ImportError as e:
+        raise ImportError("progress=True needs tqdm: pip install tqdm (or cloth-drape[progress])") from e
+    return tqdm(total=total, desc="runs", unit="run")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -712,6 +766,7 @@ def drape(
     edge_length: float = 0.015,
     min_thickness: float | None = None,
     executor: concurrent.futures.Executor | None = None,
+    progress: bool = False,
 ) -> DrapeResult:
     """Drapes every pattern on ``body``, as ``cloth drape`` does, on any executor.
 
@@ -724,7 +779,8 @@ def drape(
     patterns done by an earlier batch are skipped. ``out_dir/summary.json`` and
     ``summary.md`` then say how every pattern ended, in the same form as the command's.
     ``ValueError`` before anything runs for a missing pattern or folder, two patterns of
-    one name, an unknown fabric, a bad edge length or minimum thickness.
+    one name, an unknown fabric, a bad edge length or minimum thickness. ``progress=True``
+    shows a tqdm bar of the patterns done.
     """
     inputs = [patterns] if isinstance(patterns, (str, os.PathLike)) else list(patterns)
     scenes = _drape_scenes(
@@ -736,7 +792,7 @@ def drape(
         min_thickness=min_thickness,
     )
     jobs = [Job(name=name, scene=tomllib.loads(text)) for name, _, text in scenes]
-    result = run_batch(jobs, out_dir, executor=executor)
+    result = run_batch(jobs, out_dir, executor=executor, progress=progress)
     pattern_of = {name: path for name, path, _ in scenes}
     runs = [(r.name, pattern_of[r.name], r.status == "skipped", r.error) for r in result.records]
     entries = json.loads(_write_drape_summary(os.fspath(Path(out_dir).absolute()), runs))

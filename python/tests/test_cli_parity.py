@@ -44,6 +44,13 @@ def run_cli_and_python(run_cli, scene: Path, tmp_path: Path, **kw):
     return cli_out, py_out, wrote, result
 
 
+def csv_without_timing(path):
+    """history.csv's lines without the step_ms column (the last)."""
+    lines = path.read_text().splitlines()
+    assert lines[0].endswith(",step_ms")
+    return [line.rsplit(",", 1)[0] for line in lines]
+
+
 SERIAL_SHEET_EXTRA = """
 [solver]
 parallel = false
@@ -61,8 +68,11 @@ def test_a_serial_sheet_run_is_bit_for_bit_the_commands(run_cli, sheet_scene, wr
     assert names == files_under(py_out)
     assert {"cloth.obj", "cloth.ply", "bodies.obj", "scene.glb", "render.png", "report.json", "report.md"} <= names
     assert any(n.startswith("frames/") for n in names)
-    for name in sorted(names - {"report.json", "report.md"}):
+    for name in sorted(names - {"report.json", "report.md", "history.csv"}):
         assert (cli_out / name).read_bytes() == (py_out / name).read_bytes(), name
+    # The history is the same step for step, but for each step's wall time.
+    theirs_steps, ours_steps = (csv_without_timing(out / "history.csv") for out in (cli_out, py_out))
+    assert len(ours_steps) == 61 and ours_steps == theirs_steps
     theirs, ours = read_report(cli_out), read_report(py_out)
     assert without_timing(ours) == without_timing(theirs)
     assert [c["step"] for c in ours["checkpoints"]] == [1, 30, 60]

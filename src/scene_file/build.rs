@@ -377,6 +377,15 @@ impl BodySpec {
                 let surface = TriSurface::read(&path, &options).map_err(surface_error)?;
                 vec![(named(&path.display().to_string()), surface)]
             }
+            BodyShape::Mesh(m) => {
+                let options = SurfaceOptions {
+                    scale: m.scale,
+                    ..SurfaceOptions::default()
+                };
+                let surface = TriSurface::new(m.vertices.clone(), m.triangles.clone(), &options)
+                    .map_err(surface_error)?;
+                vec![(named("mesh"), surface)]
+            }
             BodyShape::Sphere(sphere) => vec![(
                 named("sphere"),
                 TriSurface::icosphere(sphere.radius, 4).map_err(surface_error)?,

@@ -28,8 +28,8 @@ pub use observer::{RunObserver, Silent};
 pub use panel_report::PanelReport;
 pub(crate) use recorder::median;
 pub use records::{
-    BodyShape, BodySpec, BoxSpec, ClothSpec, ContactSpec, CylinderSpec, FabricSpec, FileSpec, OutputSpec,
-    Placement, SceneFile, SphereSpec, TableSpec,
+    BodyShape, BodySpec, BoxSpec, ClothSpec, ContactSpec, CylinderSpec, FabricSpec, FileSpec, GarmentPin,
+    MeshSpec, OutputSpec, Placement, SceneFile, SphereSpec, TableSpec,
 };
 pub use report::{
     Checkpoint, FrameRecord, Measurement, RunOutcome, RunReport, RunSettings, StageReport, TangleRecord,

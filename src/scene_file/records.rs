@@ -221,6 +221,18 @@ pub enum BodyShape {
     /// A table standing on z = 0 below the body's position (its top's upper face at
     /// `height`).
     Table(TableSpec),
+    /// A triangle mesh given in memory (Python's `Body.from_arrays`), loaded as a file's
+    /// is; scene files name files instead.
+    Mesh(MeshSpec),
+}
+
+/// A body's triangle mesh given in memory.
+#[derive(Debug, Clone)]
+pub struct MeshSpec {
+    pub vertices: Vec<cloth_core::math::Vec3>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Scale applied to the coordinates (0.01 for centimetres).
+    pub scale: f64,
 }
 
 /// A body read from a mesh file.

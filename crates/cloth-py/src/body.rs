@@ -1,14 +1,14 @@
 //! `cloth.Body`: a rigid body built as a scene's `[[bodies]]` entry is, so the checks and
 //! messages are the scene file's.
 
-use crate::arrays::{index_array, numbers, points as read_points, vec3_array};
+use crate::arrays::{index_array, indices, numbers, points as read_points, vec3_array};
 use crate::convert::{from_toml_value, to_toml};
 use crate::errors::input;
 use cloth::collide::{Bodies, TriSurface};
 use cloth::garment::mannequin::Measurements;
 use cloth::scene_file::{
-    BodyShape, BodySpec, BoxSpec, ContactSpec, CylinderSpec, FileSpec, Placement, SphereSpec, TableSpec,
-    UpAxis,
+    BodyShape, BodySpec, BoxSpec, ContactSpec, CylinderSpec, FileSpec, MeshSpec, Placement, SphereSpec,
+    TableSpec, UpAxis,
 };
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -62,6 +62,24 @@ impl Body {
         Ok(Self { name, parts })
     }
 
+    /// [`Self::build`] for a mesh that may have defects: a warning for each kind, saying
+    /// it is `source`'s.
+    fn build_mesh(
+        py: Python<'_>,
+        shape: BodyShape,
+        turn: Placement,
+        common: Common<'_, '_>,
+        key: &str,
+        source: &str,
+    ) -> PyResult<Self> {
+        let body = Self::build(shape, turn, common, key)?;
+        let warnings = py.import("warnings")?;
+        for d in body.defects() {
+            warnings.call_method1("warn", (format!("{source}: {d}"),))?;
+        }
+        Ok(body)
+    }
+
     fn defects(&self) -> Vec<String> {
         self.parts
             .iter()
@@ -73,6 +91,29 @@ impl Body {
         let surfaces: Vec<TriSurface> = self.parts.iter().map(|b| b.surface_at(0.0)).collect();
         TriSurface::merged(&surfaces)
     }
+}
+
+/// The turn of a body given as a mesh: from `up_axis` ("y" or "z") to z up, then by
+/// `rotation`; errors name the constructor `what`.
+fn turn(what: &str, up_axis: Option<&str>, rotation: Option<&Bound<'_, PyAny>>) -> PyResult<Placement> {
+    let up_axis = match up_axis {
+        None => None,
+        Some("y") => Some(UpAxis::Y),
+        Some("z") => Some(UpAxis::Z),
+        Some(other) => {
+            return Err(input(format!(
+                "{what}: up_axis must be \"y\" or \"z\", not {other:?}"
+            )))
+        }
+    };
+    Ok(Placement {
+        up_axis,
+        rotation: rotation
+            .map(|r| numbers::<3>(r, "rotation"))
+            .transpose()?
+            .unwrap_or_default(),
+        position: [0.0; 3],
+    })
 }
 
 /// All the parts of `bodies`, as the collider a simulation uses.
@@ -103,24 +144,7 @@ impl Body {
         friction: Option<f64>,
         name: Option<String>,
     ) -> PyResult<Self> {
-        let up_axis = match up_axis {
-            None => None,
-            Some("y") => Some(UpAxis::Y),
-            Some("z") => Some(UpAxis::Z),
-            Some(other) => {
-                return Err(input(format!(
-                    "Body.load: up_axis must be \"y\" or \"z\", not {other:?}"
-                )))
-            }
-        };
-        let turn = Placement {
-            up_axis,
-            rotation: rotation
-                .map(|r| numbers::<3>(r, "rotation"))
-                .transpose()?
-                .unwrap_or_default(),
-            position: [0.0; 3],
-        };
+        let turn = turn("Body.load", up_axis, rotation)?;
         let file = BodyShape::File(FileSpec {
             path: path.clone(),
             scale,
@@ -131,12 +155,70 @@ impl Body {
             friction,
             name,
         };
-        let body = Self::build(file, turn, common, "file")?;
-        let warnings = py.import("warnings")?;
-        for d in body.defects() {
-            warnings.call_method1("warn", (format!("{}: {d}", path.display()),))?;
-        }
-        Ok(body)
+        Self::build_mesh(py, file, turn, common, "file", &path.display().to_string())
+    }
+
+    /// A body from a triangle mesh in memory: `vertices` `(V, 3)` and `triangles` `(T, 3)`
+    /// indices into them, scaled, turned and placed as `load`'s file is (`up_axis` "z" by
+    /// default) and checked as a file is: a mesh with defects loads with a warning for each
+    /// kind, one that encloses nothing raises ValueError.
+    #[staticmethod]
+    #[pyo3(signature = (vertices, triangles, *, scale = 1.0, up_axis = None, rotation = None, position = None, thickness = None, friction = None, name = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_arrays(
+        py: Python<'_>,
+        vertices: &Bound<'_, PyAny>,
+        triangles: &Bound<'_, PyAny>,
+        scale: f64,
+        up_axis: Option<&str>,
+        rotation: Option<&Bound<'_, PyAny>>,
+        position: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+        friction: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<Self> {
+        let vertices = read_points(vertices, "vertices", None)?;
+        let bound = vertices.len().min(u32::MAX as usize);
+        let triangles: Vec<[u32; 3]> = indices::<3>(triangles, "triangles", bound)?
+            .into_iter()
+            .map(|t| t.map(|i| i as u32))
+            .collect();
+        let turn = turn("Body.from_arrays", up_axis, rotation)?;
+        let shape = BodyShape::Mesh(MeshSpec {
+            vertices,
+            triangles,
+            scale,
+        });
+        let common = Common {
+            position,
+            thickness,
+            friction,
+            name,
+        };
+        Self::build_mesh(py, shape, turn, common, "mesh", "Body.from_arrays")
+    }
+
+    /// A body from a `trimesh.Trimesh` (or anything with `vertices` and `faces`), with
+    /// `from_arrays`'s keyword `options`; trimesh meshes are y-up as often as not, so say
+    /// `up_axis="y"` for those.
+    #[staticmethod]
+    #[pyo3(signature = (mesh, **options))]
+    fn from_trimesh<'py>(
+        mesh: &Bound<'py, PyAny>,
+        options: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = mesh.py();
+        let part = |attribute: &str| {
+            mesh.getattr(attribute).map_err(|_| {
+                pyo3::exceptions::PyTypeError::new_err(format!(
+                    "Body.from_trimesh: expected a trimesh.Trimesh (with vertices and faces), got {}",
+                    mesh.get_type().name().map_or("?".into(), |n| n.to_string())
+                ))
+            })
+        };
+        let (vertices, faces) = (part("vertices")?, part("faces")?);
+        py.get_type::<Body>()
+            .call_method("from_arrays", (vertices, faces), options)
     }
 
     /// What loading found wrong with the mesh and did about it, one line per kind of

@@ -273,6 +273,7 @@ impl SewnGarment {
                 watcher.observe("draping", sim, stats)
             })
         });
+        let history = watcher.finish(py)?;
         if let Some(e) = watcher.take_error() {
             return Err(e);
         }
@@ -286,6 +287,7 @@ impl SewnGarment {
                 Simulation {
                     inner: draped.simulation,
                     bodies,
+                    history,
                 },
             )?,
         })

@@ -3,7 +3,7 @@
 use crate::arrays::{index_array, indices, numbers, plane_points, point, points, vec2_array, vec3_array};
 use crate::errors::input;
 use cloth::{math::Vec3, GridBuilder};
-use numpy::PyArray2;
+use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
@@ -92,6 +92,19 @@ impl ClothMesh {
     #[getter]
     fn uv<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         vec2_array(py, self.inner.uv())
+    }
+    /// `(M, 3, 2)` material coordinates of every triangle's corners, m (u along the warp,
+    /// v along the weft): a seam vertex has each panel's own at its corners there.
+    #[getter]
+    fn corner_uv<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
+        let m = self.inner.triangles().len();
+        let flat: Vec<f64> = (0..m)
+            .flat_map(|t| self.inner.corner_uv(t))
+            .flat_map(|c| [c.x, c.y])
+            .collect();
+        numpy::PyArray1::from_vec(py, flat)
+            .reshape([m, 3, 2])
+            .expect("a flat array of m * 6 reshapes to (m, 3, 2)")
     }
     /// `(M, 3)` vertex indices.
     #[getter]

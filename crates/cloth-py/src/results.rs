@@ -4,9 +4,11 @@
 use crate::arrays::points;
 use crate::convert::to_python;
 use crate::mesh::ClothMesh;
+use cloth::scene_file::HistoryRow;
 use cloth::StopReason;
 use numpy::PyArray1;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 /// Statistics of one step.
 #[pyclass(frozen, module = "cloth")]
@@ -249,4 +251,26 @@ pub fn strain(py: Python<'_>, mesh: &ClothMesh, positions: &Bound<'_, PyAny>) ->
 pub fn grid_stretch(mesh: &ClothMesh, positions: &Bound<'_, PyAny>) -> PyResult<Option<(f64, f64)>> {
     let x = points(positions, "positions", Some(mesh.inner.vertex_count()))?;
     Ok(cloth::GridStretch::new(&mesh.inner, &x).map(|s| (s.horizontal, s.vertical)))
+}
+
+/// History rows as columns: the stage names as a list, the rest as numpy arrays (the
+/// columns of `history.csv`, in its order).
+pub fn history_columns<'py>(py: Python<'py>, rows: &[HistoryRow]) -> PyResult<Bound<'py, PyDict>> {
+    let columns = PyDict::new(py);
+    let floats = |get: fn(&HistoryRow) -> f64| PyArray1::from_vec(py, rows.iter().map(get).collect());
+    let integers = |get: fn(&HistoryRow) -> i64| PyArray1::from_vec(py, rows.iter().map(get).collect());
+    columns.set_item("stage", rows.iter().map(|r| r.stage).collect::<Vec<_>>())?;
+    columns.set_item("step", integers(|r| r.step as i64))?;
+    columns.set_item("time", floats(|r| r.time))?;
+    columns.set_item("cg_iterations", integers(|r| r.cg_iterations as i64))?;
+    columns.set_item("cg_residual", floats(|r| r.cg_residual))?;
+    columns.set_item("kinetic_energy", floats(|r| r.kinetic_energy))?;
+    columns.set_item("potential_energy", floats(|r| r.potential_energy))?;
+    columns.set_item("max_speed", floats(|r| r.max_speed))?;
+    columns.set_item("substeps", integers(|r| i64::from(r.substeps)))?;
+    columns.set_item("retries", integers(|r| i64::from(r.retries)))?;
+    columns.set_item("contacts", integers(|r| r.contacts as i64))?;
+    columns.set_item("self_contacts", integers(|r| r.self_contacts as i64))?;
+    columns.set_item("step_ms", floats(|r| r.step_ms))?;
+    Ok(columns)
 }

@@ -1,16 +1,19 @@
 //! `cloth.Scene`: a scene file run exactly as `cloth run` runs it, into the same outputs.
 
-use crate::arrays::vec3_array;
+use crate::arrays::{index_array, index_vector, vec3_array};
 use crate::convert::{json_to_python, to_toml};
 use crate::errors::{input, simulation};
 use crate::mesh::ClothMesh;
 use crate::observe::Watcher;
+use crate::results::history_columns;
+use cloth::formats::panels::PanelLabels;
 use cloth::math::Vec3;
 use cloth::run_folder::{claim_output_folder, FolderRun, RunFolderError};
-use cloth::scene_file::{RunOutcome, SceneFile};
-use numpy::PyArray2;
-use pyo3::exceptions::PyOSError;
+use cloth::scene_file::{HistoryRow, RunOutcome, SceneFile};
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::{PyImportError, PyOSError};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use std::path::PathBuf;
 
 /// A scene file: the cloth, fabric, bodies, solver, stages and outputs of a whole run, as
@@ -92,7 +95,8 @@ impl Scene {
     /// the report, then raises SimulationError; `callback` returning False stops the run,
     /// which is then reported and returned as interrupted; Ctrl-C writes the state reached
     /// and raises KeyboardInterrupt.
-    #[pyo3(signature = (out_dir, *, force = false, callback = None, every = 1))]
+    /// `progress=True` shows a tqdm bar of each stage's steps towards its limit.
+    #[pyo3(signature = (out_dir, *, force = false, callback = None, every = 1, progress = false))]
     fn run(
         &self,
         py: Python<'_>,
@@ -100,8 +104,9 @@ impl Scene {
         force: bool,
         callback: Option<Py<PyAny>>,
         every: u64,
+        progress: bool,
     ) -> PyResult<RunResult> {
-        let mut watcher = Watcher::new(callback, every)?;
+        let mut watcher = Watcher::new(callback, every)?.with_progress(py, progress, None, "preparing")?;
         claim_output_folder(&out_dir, force)
             .map_err(|e| input(format!("{e}: pass force=True to write into it")))?;
         let prepared = py
@@ -118,6 +123,8 @@ impl Scene {
             RunFolderError::Write { .. } | RunFolderError::Create { .. } => PyOSError::new_err(e.to_string()),
             e => input(e),
         })?;
+        // The run's history is its own record of every step; the watcher's is not needed.
+        watcher.finish(py)?;
         // Python stopped it (Ctrl-C, or the callback raised): the state reached is written.
         if let Some(e) = watcher.take_error() {
             return Err(e);
@@ -141,6 +148,8 @@ impl Scene {
             report: report.unbind(),
             outcome,
             outputs: written.iter().map(|p| p.display().to_string()).collect(),
+            panels: result.panels,
+            history: result.history,
         })
     }
 
@@ -157,6 +166,8 @@ pub struct RunResult {
     report: Py<PyAny>,
     outcome: &'static str,
     outputs: Vec<String>,
+    panels: Option<PanelLabels>,
+    history: Vec<HistoryRow>,
 }
 
 #[pymethods]
@@ -190,6 +201,47 @@ impl RunResult {
     #[getter]
     fn outputs(&self) -> Vec<String> {
         self.outputs.clone()
+    }
+    /// Every step of every stage, as columns (see `Simulation.history`): what
+    /// `history.csv` holds.
+    #[getter]
+    fn history<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        history_columns(py, &self.history)
+    }
+    /// A garment's panel names (None for a sheet).
+    #[getter]
+    fn panel_names(&self) -> Option<Vec<String>> {
+        self.panels.as_ref().map(|p| p.names().to_vec())
+    }
+    /// `(M,)` each triangle's panel, an index into `panel_names` (None for a sheet).
+    #[getter]
+    fn triangle_panel<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<i64>>> {
+        self.panels
+            .as_ref()
+            .map(|p| index_vector(py, p.of_triangle().iter().copied()))
+    }
+    /// The cloth where the run ended as a `trimesh.Trimesh` (z up, m; not merged or
+    /// repaired), a garment's panel per face in `face_attributes["panel"]` with the names
+    /// in `metadata["panels"]`. Needs trimesh (`pip install cloth-drape[trimesh]`).
+    fn to_trimesh<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let trimesh = py.import("trimesh").map_err(|_| {
+            PyImportError::new_err("to_trimesh needs trimesh: pip install trimesh (or cloth-drape[trimesh])")
+        })?;
+        let options = PyDict::new(py);
+        options.set_item("vertices", vec3_array(py, &self.positions))?;
+        options.set_item("faces", index_array(py, self.mesh.inner.triangles()))?;
+        options.set_item("process", false)?;
+        let metadata = PyDict::new(py);
+        metadata.set_item("units", "m")?;
+        metadata.set_item("up_axis", "z")?;
+        if let Some(p) = &self.panels {
+            let faces = PyDict::new(py);
+            faces.set_item("panel", index_vector(py, p.of_triangle().iter().copied()))?;
+            options.set_item("face_attributes", faces)?;
+            metadata.set_item("panels", p.names().to_vec())?;
+        }
+        options.set_item("metadata", metadata)?;
+        trimesh.getattr("Trimesh")?.call((), Some(&options))
     }
     fn __repr__(&self) -> String {
         format!("RunResult({}, {} files)", self.outcome, self.outputs.len())

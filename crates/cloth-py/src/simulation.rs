@@ -7,8 +7,9 @@ use crate::errors::{input, sim};
 use crate::fabric::Fabric;
 use crate::mesh::ClothMesh;
 use crate::observe::Watcher;
-use crate::results::{RestOutcome, StepStats, Strain};
+use crate::results::{history_columns, RestOutcome, StepStats, Strain};
 use crate::self_collision::self_collision_of;
+use cloth::scene_file::HistoryRow;
 use cloth::{Pin, RestCriteria, SimulationBuilder, SolverSettings};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -25,6 +26,8 @@ use std::sync::Arc;
 pub struct Simulation {
     pub inner: cloth::Simulation,
     pub bodies: Arc<cloth::collide::Bodies>,
+    /// Every step taken through this object.
+    pub history: Vec<HistoryRow>,
 }
 
 impl Simulation {
@@ -38,6 +41,7 @@ impl Simulation {
         let inner = &mut self.inner;
         let result =
             py.detach(|| inner.run_to_rest_with(&criteria, |s, stats| watcher.observe("running", s, stats)));
+        self.history.extend(watcher.finish(py)?);
         if let Some(e) = watcher.take_error() {
             return Err(e);
         }
@@ -91,7 +95,11 @@ impl Simulation {
             builder = builder.collider(bodies.clone());
         }
         let inner = builder.build().map_err(input)?;
-        Ok(Self { inner, bodies })
+        Ok(Self {
+            inner,
+            bodies,
+            history: Vec::new(),
+        })
     }
 
     /// Takes `n` steps; returns the last one's statistics.
@@ -113,6 +121,7 @@ impl Simulation {
             }
             Ok(last.expect("at least one step was taken"))
         });
+        self.history.extend(watcher.finish(py)?);
         if let Some(e) = watcher.take_error() {
             return Err(e);
         }
@@ -126,8 +135,9 @@ impl Simulation {
     /// "stopped"); an exception it raises stops the run and propagates. Ctrl-C stops it
     /// too (KeyboardInterrupt, the state kept). With `max_time_step`, each step taken
     /// whole lets the next grow by a quarter up to it (a cut one starts again from the
-    /// solver's), and `tolerance` grows with the step.
-    #[pyo3(signature = (*, tolerance = 1e-5, consecutive_steps = 10, max_steps = 10000, moving_fraction = 0.0, callback = None, every = 1, max_time_step = None))]
+    /// solver's), and `tolerance` grows with the step. `progress=True` shows a tqdm bar
+    /// of the steps towards `max_steps`.
+    #[pyo3(signature = (*, tolerance = 1e-5, consecutive_steps = 10, max_steps = 10000, moving_fraction = 0.0, callback = None, every = 1, max_time_step = None, progress = false))]
     #[allow(clippy::too_many_arguments)]
     fn run_to_rest(
         &mut self,
@@ -139,6 +149,7 @@ impl Simulation {
         callback: Option<Py<PyAny>>,
         every: u64,
         max_time_step: Option<f64>,
+        progress: bool,
     ) -> PyResult<RestOutcome> {
         let criteria = RestCriteria {
             max_time_step,
@@ -148,7 +159,8 @@ impl Simulation {
             moving_fraction,
         };
         criteria.validate().map_err(input)?;
-        let mut watcher = Watcher::new(callback, every)?;
+        let mut watcher =
+            Watcher::new(callback, every)?.with_progress(py, progress, Some(max_steps), "running")?;
         let outcome = self.rest(py, criteria, &mut watcher)?;
         RestOutcome::new(py, &outcome)
     }
@@ -214,6 +226,16 @@ impl Simulation {
     #[getter]
     fn step_count(&self) -> u64 {
         self.inner.step_count()
+    }
+    /// Every step taken through this object, as columns (a dict of a list of the stage
+    /// names and numpy arrays, one entry per step; `pandas.DataFrame(sim.history)` makes a
+    /// table): `stage`, `step`, `time` (s), `cg_iterations`, `cg_residual`,
+    /// `kinetic_energy`, `potential_energy` (J), `max_speed` (m/s), `substeps`, `retries`,
+    /// `contacts`, `self_contacts`, `step_ms` (wall time): the columns of a run's
+    /// `history.csv`.
+    #[getter]
+    fn history<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        history_columns(py, &self.history)
     }
     /// Kinetic energy, J.
     #[getter]
