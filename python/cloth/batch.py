@@ -24,9 +24,12 @@ On a Dask cluster, pass the client's executor::
     with Client("tcp://scheduler:8786") as client:
         cb.run_batch(jobs, "/shared/skirts", executor=client.get_executor())
 
-The workers then need the ``cloth`` package, and the output folder and every file the
-scenes name (patterns, body meshes) must be at the same paths on every machine (a shared
-file system): jobs carry paths, not file contents.
+The workers then need the ``cloth`` package. Jobs carry paths by default, so the output
+folder and every file the scenes name must then be at the same paths on every machine (a
+shared file system). ``run_batch(..., portable=True)`` (or :meth:`Job.bundled`) makes
+each job carry the files its scene names instead, as bytes (read from local paths or
+fsspec URLs): a worker runs it in a temporary folder of its own, and the outputs come
+back to the client, which writes them into ``OUT_DIR``. No shared file system is needed.
 """
 
 from __future__ import annotations
@@ -136,6 +139,9 @@ class Job:
     name: str
     scene: dict[str, Any] = dataclasses.field(hash=False)
     base_dir: str = "."
+    #: The files the scene names, carried in the job (see :meth:`bundled`): its paths are
+    #: these names, and ``base_dir`` is where a worker writes them.
+    files: dict[str, bytes] = dataclasses.field(default_factory=dict, hash=False, repr=False)
 
     def __post_init__(self) -> None:
         _check_name(self.name)
@@ -171,12 +177,46 @@ class Job:
             base_dir=str(path.resolve().parent),
         )
 
+    def bundled(self) -> Job:
+        """This job carrying every file its scene names (the pattern, a cloth mesh, body
+        meshes) as bytes, read from their paths (relative to ``base_dir``) or fsspec URLs
+        (``s3://...``, needing fsspec): a worker on any machine runs it in a folder of its
+        own. ``FileNotFoundError`` names a file that cannot be read."""
+        if self.files:
+            return self
+        scene = copy.deepcopy(self.scene)
+        files: dict[str, bytes] = {}
+
+        def carry(where: str, value: Any) -> str:
+            if not isinstance(value, str):
+                raise ValueError(f"job {self.name!r}: {where} must be a path, not {value!r}")
+            name = f"inputs/{len(files)}_{_safe_name(Path(value.split('://')[-1]).name)}"
+            files[name] = _read_input(value, self.base_dir, f"job {self.name!r}: {where}")
+            return name
+
+        garment = (scene.get("cloth") or {}).get("garment")
+        if isinstance(garment, dict) and "pattern" in garment:
+            garment["pattern"] = carry("cloth.garment.pattern", garment["pattern"])
+        mesh = (scene.get("cloth") or {}).get("mesh")
+        if isinstance(mesh, dict) and "file" in mesh:
+            mesh["file"] = carry("cloth.mesh.file", mesh["file"])
+        for k, body in enumerate(scene.get("bodies") or []):
+            if isinstance(body, dict) and "file" in body:
+                body["file"] = carry(f"bodies[{k}].file", body["file"])
+        return Job(name=self.name, scene=scene, base_dir=".", files=files)
+
     def key(self) -> str:
         """A hash of what the job runs (the scene and where its paths start, not its name):
         a run in the job's folder whose ``done.json`` has the same key is this job done.
         Files the scene names are identified by path, not content."""
+        # A bundled job is what it carries wherever it runs; else its files are its paths.
+        where: Any = (
+            {name: hashlib.sha256(data).hexdigest() for name, data in sorted(self.files.items())}
+            if self.files
+            else self.base_dir
+        )
         canonical = json.dumps(
-            {"scene": self.scene, "base_dir": self.base_dir},
+            {"scene": self.scene, "base_dir": where},
             sort_keys=True,
             separators=(",", ":"),
             ensure_ascii=False,
@@ -434,6 +474,21 @@ def sweep(
     return jobs
 
 
+def _read_input(value: str, base_dir: str, what: str) -> bytes:
+    """The bytes of a file a scene names: an fsspec URL, or a path from ``base_dir``."""
+    try:
+        if "://" in value:
+            try:
+                import fsspec
+            except ImportError as e:
+                raise ImportError(f"{what}: reading {value} needs fsspec: pip install fsspec") from e
+            with fsspec.open(value, "rb") as f:
+                return f.read()
+        return (Path(base_dir) / value).read_bytes()
+    except FileNotFoundError as e:
+        raise FileNotFoundError(f"{what}: cannot read '{value}': {e}") from e
+
+
 def _write_json(path: Path, data: Any) -> None:
     """Writes ``data`` to ``path`` atomically: readers see the old file or the new one."""
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
@@ -551,6 +606,55 @@ def _run_job(job: Job, folder: str, submission: str = "") -> RunRecord:
     return record
 
 
+@dataclasses.dataclass(frozen=True)
+class _Delivery:
+    """What a worker sends back from a bundled job: the record, the marker, and every
+    file the run wrote (relative path to bytes)."""
+
+    record: RunRecord
+    marker: dict[str, Any]
+    outputs: dict[str, bytes]
+
+
+def _run_portable(job: Job, folder: str, submission: str = "") -> _Delivery:
+    """Runs a bundled job in a temporary folder of this worker's (its files written
+    there, the outputs read back): the task a worker runs when jobs carry their files.
+    ``folder`` is where the client will put the outputs, for the record."""
+    with tempfile.TemporaryDirectory(prefix="cloth-job-") as tmp:
+        work = Path(tmp)
+        for name, data in job.files.items():
+            target = work / name
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_bytes(data)
+        local = Job(name=job.name, scene=job.scene, base_dir=str(work))
+        record = _run_job(local, str(work / "out"), submission)
+        out = work / "out"
+        outputs = {
+            p.relative_to(out).as_posix(): p.read_bytes()
+            for p in sorted(out.rglob("*"))
+            if p.is_file() and p.name not in (DONE_FILE, FAILED_FILE)
+        }
+        marker = _read_json(out / (FAILED_FILE if record.status == "failed" else DONE_FILE)) or {}
+    record = dataclasses.replace(record, folder=folder, key=job.key())
+    marker.update(folder=folder, key=job.key(), outputs=[str(Path(folder) / n) for n in outputs])
+    return _Delivery(record=record, marker=marker, outputs=outputs)
+
+
+def _deliver(delivery: _Delivery, folder: Path) -> RunRecord:
+    """Writes a bundled job's outputs into ``folder`` (emptied first, as a run's is), then
+    its marker."""
+    _empty_folder(folder)
+    for name, data in delivery.outputs.items():
+        target = (folder / name).resolve()
+        if folder.resolve() not in target.parents:
+            raise ValueError(f"a delivered output {name!r} lies outside '{folder}'")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(data)
+    marker = FAILED_FILE if delivery.record.status == "failed" else DONE_FILE
+    _write_json(folder / marker, delivery.marker)
+    return delivery.record
+
+
 def _lost(job: Job, folder: Path, error: BaseException) -> RunRecord:
     """The record of a task that raised instead of returning: its worker died, it could
     not be sent, its folder could not be written."""
@@ -635,6 +739,7 @@ def run_batch(
     rerun_failed: bool = True,
     on_result: Callable[[RunRecord], None] | None = None,
     progress: bool = False,
+    portable: bool = False,
 ) -> BatchResult:
     """Runs every job not done yet, each into ``out_dir/<job name>``.
 
@@ -652,6 +757,10 @@ def run_batch(
     ``out_dir/batch.json`` lists every job (``"pending"`` until it ends) and is rewritten
     as each run finishes.
 
+    ``portable=True`` bundles every job (:meth:`Job.bundled`): the workers need no path
+    of this machine's, and the outputs come back here to be written into ``out_dir``.
+    Jobs bundled already run so anyway.
+
     ``progress=True`` shows a tqdm bar of the runs ended (those skipped counted from the
     start; ``ImportError`` before anything runs without tqdm).
 
@@ -660,6 +769,8 @@ def run_batch(
     """
     jobs = list(jobs)
     _check_jobs(jobs)
+    if portable:
+        jobs = [job.bundled() for job in jobs]
     bar = _progress_bar(progress, len(jobs))
     # Absolute: workers in other processes, or on other machines, have other working folders.
     out = Path(out_dir).absolute()
@@ -700,20 +811,26 @@ def _run_all(
 ) -> None:
     """Runs the jobs numbered in ``todo`` here or on ``executor``, handing each record to
     ``finish`` as it ends."""
+    def task(i: int) -> Callable[..., Any]:
+        return _run_portable if jobs[i].files else _run_job
+
+    def ended(i: int, result: RunRecord | _Delivery) -> RunRecord:
+        return _deliver(result, folders[i]) if isinstance(result, _Delivery) else result
+
     if executor is None:
         for i in todo:
             try:
-                record = _run_job(jobs[i], str(folders[i]))
+                record = ended(i, task(i)(jobs[i], str(folders[i])))
             except Exception as e:
                 record = _lost(jobs[i], folders[i], e)
             finish(i, record)
     else:
-        futures = {executor.submit(_run_job, jobs[i], str(folders[i]), uuid.uuid4().hex): i for i in todo}
+        futures = {executor.submit(task(i), jobs[i], str(folders[i]), uuid.uuid4().hex): i for i in todo}
         try:
             for future in concurrent.futures.as_completed(futures):
                 i = futures[future]
                 try:
-                    record = future.result()
+                    record = ended(i, future.result())
                 except Exception as e:  # the task itself was lost: still only this run's failure
                     record = _lost(jobs[i], folders[i], e)
                 finish(i, record)
@@ -762,11 +879,13 @@ def drape(
     out_dir: _PathLike,
     *,
     body_up_axis: Literal["y", "z"] | None = None,
+    up_axis: Literal["y", "z"] | None = None,
     fabric: str = "cotton_poplin",
     edge_length: float = 0.015,
     min_thickness: float | None = None,
     executor: concurrent.futures.Executor | None = None,
     progress: bool = False,
+    portable: bool = False,
 ) -> DrapeResult:
     """Drapes every pattern on ``body``, as ``cloth drape`` does, on any executor.
 
@@ -778,22 +897,81 @@ def drape(
     ``--min-thickness``; 0.003 keeps it uniform), through :func:`run_batch`, so
     patterns done by an earlier batch are skipped. ``out_dir/summary.json`` and
     ``summary.md`` then say how every pattern ended, in the same form as the command's.
+    ``up_axis="y"`` writes the OBJ and PLY outputs y-up, as ``cloth drape --up-axis y``.
     ``ValueError`` before anything runs for a missing pattern or folder, two patterns of
     one name, an unknown fabric, a bad edge length or minimum thickness. ``progress=True``
-    shows a tqdm bar of the patterns done.
+    shows a tqdm bar of the patterns done; ``portable=True`` sends each pattern and the body
+    with its job, for workers without this machine's files (see :func:`run_batch`).
     """
     inputs = [patterns] if isinstance(patterns, (str, os.PathLike)) else list(patterns)
     scenes = _drape_scenes(
         [os.fspath(p) for p in inputs],
         os.fspath(body),
         body_up_axis=body_up_axis,
+        up_axis=up_axis,
         fabric=fabric,
         edge_length=edge_length,
         min_thickness=min_thickness,
     )
     jobs = [Job(name=name, scene=tomllib.loads(text)) for name, _, text in scenes]
-    result = run_batch(jobs, out_dir, executor=executor, progress=progress)
+    result = run_batch(jobs, out_dir, executor=executor, progress=progress, portable=portable)
     pattern_of = {name: path for name, path, _ in scenes}
     runs = [(r.name, pattern_of[r.name], r.status == "skipped", r.error) for r in result.records]
     entries = json.loads(_write_drape_summary(os.fspath(Path(out_dir).absolute()), runs))
     return DrapeResult(batch=result, entries=entries)
+
+
+def _main(argv: Sequence[str] | None = None) -> int:
+    """``python -m cloth drape ...``: :func:`drape` from the command line, on a Dask
+    cluster with ``--dask ADDRESS`` (each job carrying its pattern and the body); what
+    ``cloth drape --dask`` runs. Exits 0 when every pattern finished, 1 when one did not,
+    2 for bad input."""
+    import argparse
+    import sys
+
+    parser = argparse.ArgumentParser(prog="python -m cloth", description=_main.__doc__)
+    commands = parser.add_subparsers(dest="command", required=True)
+    d = commands.add_parser("drape", help="drape patterns on a body, as cloth drape")
+    d.add_argument("patterns", nargs="+")
+    d.add_argument("--body", required=True)
+    d.add_argument("--out", required=True)
+    d.add_argument("--body-up-axis", choices=["y", "z"])
+    d.add_argument("--up-axis", choices=["y", "z"])
+    d.add_argument("--fabric", default="cotton_poplin")
+    d.add_argument("--edge-length", type=float, default=0.015)
+    d.add_argument("--min-thickness", type=float)
+    d.add_argument("--dask", metavar="ADDRESS", help="the Dask scheduler's address (tcp://host:8786)")
+    d.add_argument("--quiet", action="store_true")
+    args = parser.parse_args(argv)
+
+    def run(executor: concurrent.futures.Executor | None) -> DrapeResult:
+        return drape(
+            args.patterns,
+            args.body,
+            args.out,
+            body_up_axis=args.body_up_axis,
+            up_axis=args.up_axis,
+            fabric=args.fabric,
+            edge_length=args.edge_length,
+            min_thickness=args.min_thickness,
+            executor=executor,
+            portable=args.dask is not None,
+        )
+
+    try:
+        if args.dask is None:
+            result = run(None)
+        else:
+            from distributed import Client
+
+            with Client(args.dask) as client:
+                result = run(client.get_executor())
+    except (ValueError, FileNotFoundError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    if not args.quiet:
+        for entry in result.entries:
+            print(f"{entry['name']}: {entry['outcome']}" + (f" ({entry['verdict']})" if entry.get("verdict") else ""))
+    finished = sum(e["outcome"] == "finished" for e in result.entries)
+    print(f"{finished} of {len(result.entries)} patterns finished; summary in {Path(args.out) / 'summary.md'}")
+    return 0 if result.ok else 1

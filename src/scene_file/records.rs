@@ -12,10 +12,14 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
+    /// The run's name, in the report and the picture.
     #[serde(default)]
     pub name: String,
+    /// What the cloth is: exactly one of the tables below.
     pub cloth: ClothSpec,
+    /// The fabric: `preset = "..."`, `[fabric.si]` or `[fabric.kes]`.
     pub fabric: FabricSpec,
+    /// The rigid bodies the cloth meets, each a `[[bodies]]` entry.
     #[serde(default)]
     pub bodies: Vec<BodySpec>,
     /// The integrator of a sheet's run (a garment's stages have their own).
@@ -24,13 +28,16 @@ pub struct SceneFile {
     /// When a sheet's run stops.
     #[serde(default)]
     pub rest: RestCriteria,
+    /// A garment's sewing stage (gravity off, the seams pulled shut).
     #[serde(default)]
     pub sewing: SewingSettings,
+    /// A garment's draping stage (gravity on, until at rest).
     #[serde(default)]
     pub drape: DrapeSettings,
     /// The cloth's collision with itself, in every stage (on unless `enabled = false`).
     #[serde(default)]
     pub self_collision: SelfCollision,
+    /// What the run writes.
     #[serde(default)]
     pub output: OutputSpec,
     /// The largest cloth mesh the scene may make, in triangles: a pattern in the wrong
@@ -75,9 +82,12 @@ pub enum ClothSpec {
     /// `pins` hold outline edges or whole panels, by name, where the sewing leaves them,
     /// for the whole drape (a garment on a hanger, a waistband held up).
     Garment {
+        /// The pattern file, from the scene's folder.
         pattern: PathBuf,
+        /// The target length of the mesh's edges, m (15 mm by default).
         #[serde(default = "default_edge_length")]
         edge_length: f64,
+        /// Edges or panels held where the sewing leaves them (see below).
         #[serde(default)]
         pins: Vec<GarmentPin>,
     },
@@ -85,15 +95,22 @@ pub enum ClothSpec {
     /// its warp along `u_axis` and weft along `v_axis`, the particles `pins` (as [i, j])
     /// held where they start.
     Grid {
+        /// Particles along the warp.
         nx: usize,
+        /// Particles along the weft.
         ny: usize,
+        /// Width (warp) and height (weft), m.
         size: [f64; 2],
+        /// The corner of particle [0, 0], m.
         #[serde(default)]
         origin: [f64; 3],
+        /// The warp's direction ([1, 0, 0] by default).
         #[serde(default = "x_axis")]
         u_axis: [f64; 3],
+        /// The weft's direction ([0, 1, 0] by default).
         #[serde(default = "y_axis")]
         v_axis: [f64; 3],
+        /// Particles held where they start, as [i, j].
         #[serde(default)]
         pins: Vec<[usize; 2]>,
     },
@@ -103,23 +120,31 @@ pub enum ClothSpec {
     /// numbers (from 0) held where they start; the cloth is turned from `up_axis` to z up,
     /// then by `rotation`, then moved by `position` (as a body's file is).
     Mesh {
+        /// The OBJ file, from the scene's folder.
         file: PathBuf,
+        /// Scale of the file's coordinates (0.01 for centimetres).
         #[serde(default = "one")]
         scale: f64,
+        /// Scale of its texture coordinates to metres.
         #[serde(default = "one")]
         uv_scale: f64,
+        /// The file's up axis, turned to z.
         #[serde(default = "z_up")]
         up_axis: UpAxis,
+        /// Degrees about x, then y, then z.
         #[serde(default)]
         rotation: [f64; 3],
+        /// Where the file's origin goes, m.
         #[serde(default)]
         position: [f64; 3],
+        /// Vertex numbers (from 0) held where they start.
         #[serde(default)]
         pins: Vec<usize>,
     },
     /// The Cusick drape test (BS 5058): a 30 cm disk of the fabric, its central 18 cm
     /// clamped, drapes from flat; the report gives the drape coefficient and the folds.
     Cusick {
+        /// The disk's mesh edge length, m.
         #[serde(default = "cusick_edge_length")]
         edge_length: f64,
         /// Rayleigh damping added to the fabric's while it settles, s.
@@ -129,7 +154,12 @@ pub enum ClothSpec {
     /// The cantilever bending test (ASTM D1388): a 2.5 cm strip along the warp, `overhang`
     /// m of it beyond the platform's edge in `cells` cells, bends under its own weight; the
     /// report compares its tip with the inextensible elastica's.
-    Cantilever { overhang: f64, cells: usize },
+    Cantilever {
+        /// The strip's length beyond the edge, m.
+        overhang: f64,
+        /// Cells along that length.
+        cells: usize,
+    },
 }
 
 /// A garment's pin: an outline edge of a panel (by its name, or its index from 0 as
@@ -137,7 +167,9 @@ pub enum ClothSpec {
 #[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GarmentPin {
+    /// The panel's name.
     pub panel: String,
+    /// One of its outline edges, by name or index; the whole panel when not given.
     #[serde(default)]
     pub edge: Option<EdgeRef>,
 }
@@ -275,22 +307,37 @@ pub struct ContactSpec {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BodyTable {
+    /// The body's name in the report and the outputs.
     name: Option<String>,
+    /// The parametric mannequin (see below); one shape key of mannequin, file, sphere,
+    /// box, cylinder, table.
     mannequin: Option<Measurements>,
+    /// A mesh file: OBJ, STL, PLY, glTF or GLB, from the scene's folder.
     file: Option<PathBuf>,
+    /// Scale of a file's coordinates (0.01 for centimetres).
     scale: Option<f64>,
+    /// A file's up axis, turned to z (glTF's is y unless given, the others' z).
     up_axis: Option<UpAxis>,
+    /// Degrees about x, then y, then z, after the up axis is turned.
     #[serde(default)]
     rotation: [f64; 3],
+    /// `{ radius = r }`, m, centred on `position`.
     sphere: Option<SphereSpec>,
+    /// `{ size = [x, y, z] }`, m, centred on `position`.
     #[serde(rename = "box")]
     cuboid: Option<BoxSpec>,
+    /// `{ radius = r, height = h }`, along z, centred on `position`.
     cylinder: Option<CylinderSpec>,
+    /// `{ size = [w, d, t], height = h }` (and `leg_width`, `leg_inset`): a table on z = 0.
     table: Option<TableSpec>,
+    /// Where the body goes, m.
     #[serde(default)]
     position: [f64; 3],
+    /// The contact layer's thickness, m (3 mm by default).
     thickness: Option<f64>,
+    /// The layer thinned where the body is flat, down to this, m.
     min_thickness: Option<f64>,
+    /// The friction coefficient with the cloth (the fabric's by default).
     friction: Option<f64>,
 }
 

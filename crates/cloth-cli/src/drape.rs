@@ -67,6 +67,12 @@ pub struct DrapeArgs {
     /// Print nothing but errors and the final count.
     #[arg(long)]
     pub quiet: bool,
+    /// Drape on a Dask cluster, given its scheduler's address (tcp://host:8786), through
+    /// the Python package (`pip install "cloth-drape[dask]"`; the interpreter is $CLOTH_PYTHON,
+    /// else python3): each job carries its pattern and the body, so the workers need no
+    /// shared file system, and the outputs come back into --out.
+    #[arg(long, value_name = "ADDRESS")]
+    pub dask: Option<String>,
 }
 
 /// One pattern's folder, and whether a run may write into it.
@@ -234,7 +240,76 @@ fn done_line(entry: &SummaryEntry, done: usize, total: usize) -> String {
 }
 
 /// `cloth drape`.
+/// `cloth drape --dask`: the same drape run by `python -m cloth drape` on the cluster,
+/// its exit status the command's.
+fn drape_on_dask(args: &DrapeArgs, address: &str) -> Result<(), Failure> {
+    for (given, flag) in [
+        (args.force, "--force"),
+        (args.time_limit.is_some(), "--time-limit"),
+        (args.jobs != 1, "--jobs"),
+    ] {
+        if given {
+            return Err(Failure::input(format!(
+                "{flag} is not available with --dask (the cluster's workers decide how many run at once)"
+            )));
+        }
+    }
+    let python = std::env::var_os("CLOTH_PYTHON").unwrap_or_else(|| "python3".into());
+    let shown = python.to_string_lossy().into_owned();
+    let found = std::process::Command::new(&python)
+        .args(["-c", "import cloth.batch, distributed"])
+        .output();
+    match found {
+        Ok(o) if o.status.success() => {}
+        Ok(o) => {
+            return Err(Failure::input(format!(
+                "--dask runs through the Python package, which {shown} cannot import:                  pip install \"cloth-drape[dask]\" (or set CLOTH_PYTHON): {}",
+                String::from_utf8_lossy(&o.stderr).trim()
+            )))
+        }
+        Err(e) => {
+            return Err(Failure::input(format!(
+                "--dask runs through the Python package, but {shown} cannot be started: {e} \
+                 (set CLOTH_PYTHON to a Python with cloth-drape[dask])"
+            )))
+        }
+    }
+    let mut command = std::process::Command::new(&python);
+    command.args(["-m", "cloth", "drape"]).args(&args.patterns);
+    command.arg("--body").arg(&args.body).arg("--out").arg(&args.out);
+    let axis = |a: Axis| match a {
+        Axis::Y => "y",
+        Axis::Z => "z",
+    };
+    if let Some(a) = args.body_up_axis {
+        command.args(["--body-up-axis", axis(a)]);
+    }
+    if let Some(a) = args.up_axis {
+        command.args(["--up-axis", axis(a)]);
+    }
+    command.args(["--fabric", &args.fabric]);
+    command.args(["--edge-length", &args.edge_length.to_string()]);
+    command.args(["--min-thickness", &args.min_thickness.to_string()]);
+    command.args(["--dask", address]);
+    if args.quiet {
+        command.arg("--quiet");
+    }
+    let status = command
+        .status()
+        .map_err(|e| Failure::input(format!("cannot start {shown}: {e}")))?;
+    match status.code() {
+        Some(0) => Ok(()),
+        Some(2) => Err(Failure::input("the Python drape refused its input (above)")),
+        _ => Err(Failure::run(
+            "not every pattern finished on the cluster (see the summary)",
+        )),
+    }
+}
+
 pub fn drape(args: DrapeArgs) -> Result<(), Failure> {
+    if let Some(address) = &args.dask {
+        return drape_on_dask(&args, address);
+    }
     if !(args.edge_length.is_finite() && args.edge_length > 0.0) {
         return Err(Failure::input(format!(
             "--edge-length {} must be a positive length in m",

@@ -11,10 +11,11 @@ use std::path::PathBuf;
 /// The patterns named by `inputs` (files, or folders searched for `.toml` and `.json`
 /// patterns) as `(name, path, scene)`: the folder name its outputs go under, the pattern
 /// file, and the text of the scene that drapes it on `body` (as `cloth drape` writes it
-/// beside the outputs). ValueError for a missing input, a folder without patterns, two
-/// patterns of one name, an unknown fabric, a bad edge length or minimum thickness.
+/// beside the outputs), its OBJ and PLY written `up_axis` up. ValueError for a missing
+/// input, a folder without patterns, two patterns of one name, an unknown fabric, a bad
+/// edge length or minimum thickness.
 #[pyfunction(name = "_drape_scenes")]
-#[pyo3(signature = (inputs, body, *, body_up_axis = None, fabric = "cotton_poplin", edge_length = 0.015, min_thickness = None))]
+#[pyo3(signature = (inputs, body, *, body_up_axis = None, fabric = "cotton_poplin", edge_length = 0.015, min_thickness = None, up_axis = None))]
 pub fn drape_scenes(
     inputs: Vec<PathBuf>,
     body: PathBuf,
@@ -22,6 +23,7 @@ pub fn drape_scenes(
     fabric: &str,
     edge_length: f64,
     min_thickness: Option<f64>,
+    up_axis: Option<&str>,
 ) -> PyResult<Vec<(String, String, String)>> {
     if !(edge_length.is_finite() && edge_length > 0.0) {
         return Err(input(format!(
@@ -35,13 +37,14 @@ pub fn drape_scenes(
         .fabric(fabric)
         .map_err(input)?;
     let body_up_axis: Option<UpAxis> = body_up_axis.map(crate::convert::up_axis).transpose()?;
+    let up_axis: Option<UpAxis> = up_axis.map(crate::convert::up_axis).transpose()?;
     let request = DrapeRequest {
         body: std::path::absolute(&body).map_err(input)?,
         body_up_axis,
         fabric: fabric.to_string(),
         edge_length,
         body_min_thickness,
-        up_axis: None,
+        up_axis,
     };
     let patterns = find_patterns(&inputs).map_err(input)?;
     Ok(patterns
