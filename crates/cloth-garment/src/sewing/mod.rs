@@ -786,7 +786,8 @@ pub fn drape_simulation(
 /// (again while that is kept and still crosses), and if it still crosses, draped again,
 /// loose where it crosses, and the drape crossing least kept (see `untangling_at_rest`).
 /// `observe` sees every step and may stop it ([`cloth_core::StopReason::Stopped`]), as may
-/// `interrupt` inside a step.
+/// `interrupt` inside a step; a drape after the first stopped so ends the drape as
+/// stopped, at the rest kept before it.
 pub fn drape(
     sewn: &Sewn,
     collider: Arc<dyn Collider>,
@@ -800,9 +801,13 @@ pub fn drape(
     let mut simulation = drape_simulation(sewn, collider.clone(), settings.solver(), settings.drag)?;
     simulation.set_interrupt(interrupt.clone());
     let mut cg = 0;
+    // Whether `observe` stopped a drape after the first, which ends as that drape failing.
+    let mut stopped = false;
     let mut watch = |sim: &Simulation, stats: &StepStats| {
         cg += stats.cg_iterations;
-        observe(sim, stats)
+        let flow = observe(sim, stats);
+        stopped |= flow.is_break();
+        flow
     };
     let failed = |source| GarmentError::Sim {
         stage: "draping",
@@ -854,6 +859,14 @@ pub fn drape(
             smoothed,
             loose,
         });
+        // A drape after the first that the caller stopped (a time limit, Ctrl-C, the
+        // observer) leaves the rest kept before it, but the drape was stopped, not done.
+        if stopped || interrupt.is_raised() {
+            outcome = RestOutcome {
+                reason: cloth_core::StopReason::Stopped,
+                ..outcome
+            };
+        }
     }
     Ok(Draped {
         simulation,
