@@ -40,10 +40,36 @@ pub struct RenderArgs {
     /// Degrees above the horizon (-89 to 89).
     #[arg(long, default_value_t = View::default().elevation_deg, allow_negative_numbers = true)]
     pub elevation: f64,
-    /// The files' up axis: y for outputs written with `[output] up_axis = "y"` and for
-    /// most avatar assets, turned to z up as a scene reads them; z (the engine's) by default.
-    #[arg(long, value_enum, default_value = "z")]
-    pub up_axis: Axis,
+    /// The files' up axis: y for most avatar assets, turned to z up as a scene reads them.
+    /// By default each file's own header says (cloth's OBJ and PLY outputs name their
+    /// frame, `[output] up_axis = "y"` or not); z, the engine's, where it does not.
+    #[arg(long, value_enum)]
+    pub up_axis: Option<Axis>,
+}
+
+/// The up axis a file's header declares, as cloth writes it in its OBJ and PLY outputs
+/// (a comment line starting "y up" or "z up"); `None` when its first lines say nothing.
+fn declared_up_axis(path: &std::path::Path) -> Option<Axis> {
+    use std::io::Read;
+    let mut head = Vec::new();
+    std::fs::File::open(path)
+        .ok()?
+        .take(4096)
+        .read_to_end(&mut head)
+        .ok()?;
+    String::from_utf8_lossy(&head).lines().take(40).find_map(|line| {
+        let comment = line
+            .strip_prefix('#')
+            .or_else(|| line.strip_prefix("comment"))?
+            .trim_start();
+        if comment.starts_with("y up") {
+            Some(Axis::Y)
+        } else if comment.starts_with("z up") {
+            Some(Axis::Z)
+        } else {
+            None
+        }
+    })
 }
 
 pub fn render(args: &RenderArgs) -> Result<(), Failure> {
@@ -60,7 +86,7 @@ pub fn render(args: &RenderArgs) -> Result<(), Failure> {
     let mut plain = 0;
     for path in &args.files {
         let mut loaded = read_render_mesh(path).map_err(Failure::input)?;
-        if let Axis::Y = args.up_axis {
+        if let Some(Axis::Y) = args.up_axis.or_else(|| declared_up_axis(path)) {
             let turn = cloth::scene_file::UpAxis::Y.to_z_up();
             for p in &mut loaded.mesh.positions {
                 *p = turn * *p;

@@ -124,6 +124,23 @@ fn a_y_up_file_draws_upright_when_told() {
     let upright = draw(&z_up, "z.png", &[]);
     let turned = draw(&y_up, "y.png", &["--up-axis", "y"]);
     let lying = draw(&y_up, "lying.png", &[]);
+    // The same file with the header cloth writes draws upright by itself, unless told
+    // otherwise (same name, so the same title).
+    let headed_dir = dir.join("headed");
+    std::fs::create_dir_all(&headed_dir).unwrap();
+    let headed = headed_dir.join("y.obj");
+    let header = "# the cloth, written by cloth 0.1.0\n# y up, metres: turned from the engine's z up, (x, y, z) -> (x, z, -y)\n";
+    std::fs::write(
+        &headed,
+        format!("{header}{}", std::fs::read_to_string(&y_up).unwrap()),
+    )
+    .unwrap();
+    assert_eq!(draw(&headed, "headed.png", &[]), turned, "read from its header");
+    assert_eq!(
+        draw(&headed, "told.png", &["--up-axis", "z"]),
+        lying,
+        "the flag wins"
+    );
     let differ = |a: &[u8], b: &[u8]| {
         a.chunks_exact(3)
             .zip(b.chunks_exact(3))
