@@ -264,7 +264,7 @@ impl SewnGarment {
             }
         };
         settings.validate().map_err(input)?;
-        let mut watcher = Watcher::new(callback, every)?;
+        let mut watcher = Watcher::new(callback, every)?.keeping_history();
         let bodies = collider(&bodies);
         let sewn = &self.inner;
         let collider = bodies.clone();

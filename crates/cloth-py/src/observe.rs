@@ -1,7 +1,7 @@
 //! Watching a run from Python while the GIL is released: the callback is called (with the
 //! GIL) every N steps with a snapshot, a tqdm progress bar is moved on, and Ctrl-C is
 //! noticed; the callback or Ctrl-C may stop the run, which then keeps the state reached.
-//! The steps seen are kept as history rows.
+//! The steps seen are kept as history rows when asked (a scene's run keeps its own).
 
 use crate::arrays::vec3_array;
 use crate::results::{Snapshot, StepStats};
@@ -27,7 +27,8 @@ pub struct Watcher {
     progress: Option<Py<PyAny>>,
     steps: u64,
     shown: u64,
-    history: Vec<HistoryRow>,
+    /// The steps seen, when kept.
+    history: Option<Vec<HistoryRow>>,
 }
 
 impl Watcher {
@@ -43,8 +44,14 @@ impl Watcher {
             progress: None,
             steps: 0,
             shown: 0,
-            history: Vec::new(),
+            history: None,
         })
+    }
+
+    /// Keeping a history row of every step it sees, for [`Self::finish`].
+    pub fn keeping_history(mut self) -> Self {
+        self.history = Some(Vec::new());
+        self
     }
 
     /// With a tqdm progress bar of `total` steps (`None`: unknown) described as `stage`,
@@ -82,13 +89,13 @@ impl Watcher {
         Ok(())
     }
 
-    /// Brings the bar up to date and closes it; hands over the steps seen.
+    /// Brings the bar up to date and closes it; hands over the steps seen, if kept.
     pub fn finish(&mut self, py: Python<'_>) -> PyResult<Vec<HistoryRow>> {
         self.advance(py)?;
         if let Some(bar) = self.progress.take() {
             bar.call_method0(py, "close")?;
         }
-        Ok(std::mem::take(&mut self.history))
+        Ok(self.history.take().unwrap_or_default())
     }
 
     /// After step `stats.step` of `stage`.
@@ -99,7 +106,9 @@ impl Watcher {
         stats: &cloth::StepStats,
     ) -> ControlFlow<()> {
         self.steps += 1;
-        self.history.push(HistoryRow::of(stage, stats.step, stats));
+        if let Some(history) = &mut self.history {
+            history.push(HistoryRow::of(stage, stats.step, stats));
+        }
         let call = self.callback.is_some() && stats.step.is_multiple_of(self.every);
         let check = self.last_check.elapsed() >= SIGNAL_CHECK;
         if !call && !check {

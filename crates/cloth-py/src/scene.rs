@@ -123,7 +123,7 @@ impl Scene {
             RunFolderError::Write { .. } | RunFolderError::Create { .. } => PyOSError::new_err(e.to_string()),
             e => input(e),
         })?;
-        // The run's history is its own record of every step; the watcher's is not needed.
+        // The run keeps its own history; the watcher only closes its bar.
         watcher.finish(py)?;
         // Python stopped it (Ctrl-C, or the callback raised): the state reached is written.
         if let Some(e) = watcher.take_error() {

@@ -108,7 +108,7 @@ impl Simulation {
         if n == 0 {
             return Err(input("n: must be at least 1 step"));
         }
-        let mut watcher = Watcher::new(None, 1)?;
+        let mut watcher = Watcher::new(None, 1)?.keeping_history();
         let inner = &mut self.inner;
         let result = py.detach(|| {
             let mut last = None;
@@ -159,8 +159,12 @@ impl Simulation {
             moving_fraction,
         };
         criteria.validate().map_err(input)?;
-        let mut watcher =
-            Watcher::new(callback, every)?.with_progress(py, progress, Some(max_steps), "running")?;
+        let mut watcher = Watcher::new(callback, every)?.keeping_history().with_progress(
+            py,
+            progress,
+            Some(max_steps),
+            "running",
+        )?;
         let outcome = self.rest(py, criteria, &mut watcher)?;
         RestOutcome::new(py, &outcome)
     }
