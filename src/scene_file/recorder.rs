@@ -41,13 +41,12 @@ pub(super) struct Recorder<'a> {
     time: f64,
     stage: &'static str,
     stage_start: Instant,
-    /// This stage's steps, CG iterations and step times (ms).
+    /// This stage's steps and CG iterations (its step times are the history's last rows).
     steps: u64,
     cg: usize,
     /// Steps taken in more than one substep, and substeps retried, this stage.
     cut: u64,
     retries: u64,
-    step_ms: Vec<f64>,
     /// Every step of the run.
     history: Vec<HistoryRow>,
     checkpoint_rows: Vec<Checkpoint>,
@@ -125,7 +124,6 @@ impl<'a> Recorder<'a> {
             cg: 0,
             cut: 0,
             retries: 0,
-            step_ms: Vec::new(),
             history: Vec::new(),
             checkpoint_rows: Vec::new(),
             frames: Vec::new(),
@@ -148,7 +146,6 @@ impl<'a> Recorder<'a> {
         self.cg = 0;
         self.cut = 0;
         self.retries = 0;
-        self.step_ms.clear();
         self.observer.stage(stage, max_steps);
     }
 
@@ -255,9 +252,7 @@ impl<'a> Recorder<'a> {
         self.cg += stats.cg_iterations;
         self.cut += u64::from(stats.substeps > 1);
         self.retries += u64::from(stats.retries);
-        let row = HistoryRow::of(self.stage, self.steps, stats);
-        self.step_ms.push(row.step_ms);
-        self.history.push(row);
+        self.history.push(HistoryRow::of(self.stage, self.steps, stats));
         if self.checkpoints.contains(&self.steps) {
             let strain = StrainSummary::of(sim.mesh(), sim.positions());
             self.checkpoint_rows.push(Checkpoint {
@@ -266,7 +261,7 @@ impl<'a> Recorder<'a> {
                 time: sim.time(),
                 max_warp: strain.max_warp,
                 max_weft: strain.max_weft,
-                median_step_ms: median(&self.step_ms),
+                median_step_ms: median(&self.stage_step_ms()),
             });
         }
         if self.frames_every > 0 && self.steps.is_multiple_of(self.frames_every) {
@@ -276,6 +271,12 @@ impl<'a> Recorder<'a> {
             }
         }
         self.observer.step(self.stage, sim, stats)
+    }
+
+    /// The wall time of each step of the current stage so far, ms.
+    fn stage_step_ms(&self) -> Vec<f64> {
+        let start = self.history.len() - self.steps as usize;
+        self.history[start..].iter().map(|r| r.step_ms).collect()
     }
 
     fn write_frame(&mut self, sim: &Simulation) -> Result<(), String> {
